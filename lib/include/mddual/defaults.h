@@ -1,0 +1,77 @@
+// Tolerances and iteration limits of mddual, in one place.
+//
+// Every tolerance is *relative*: it is multiplied by a length scale of the
+// query (see each entry) so that the same numbers work for bodies of size 1e-3
+// and 1e3 and for offsets of 1e4. All values are dimensionless unless noted.
+#pragma once
+
+namespace mddual::defaults {
+
+// ---- Hull construction (ConvexPolytope::fromPoints) -------------------------
+
+// A point set whose thickness (largest distance to the best plane through it)
+// is at most kFlatToleranceRel times its diameter is treated as a flat polygon.
+// Reason: qhull's own round-off (~1e-15 of the coordinates' magnitude) fails on
+// such sets; projecting them onto their plane moves no point by more than this
+// relative amount, which is far below the 1e-9 accuracy the queries promise.
+inline constexpr double kFlatToleranceRel = 1e-10;
+
+// Points whose distance to the line through the two farthest points is at most
+// this fraction of the diameter are collinear: not a polytope (an error).
+inline constexpr double kCollinearToleranceRel = 1e-10;
+
+// Adjacent hull facets whose planes agree this closely (every vertex of both
+// within kCoplanarToleranceRel * diameter of the merged plane) are merged into
+// one face (paper section VI-C). qhull already merges exact coplanar facets;
+// this catches round-off leftovers.
+inline constexpr double kCoplanarToleranceRel = 1e-12;
+
+// ---- Support queries ---------------------------------------------------------
+
+// Polytopes with more vertices than this get a Dobkin-Kirkpatrick hierarchy
+// and cold support queries descend it (O(log n)); smaller ones hill-climb from
+// the hint or from vertex 0. Measured crossover on the paper's ellipsoids.
+inline constexpr int kHierarchyMinVertices = 48;
+
+// The hierarchy removes independent sets of vertices of degree at most this
+// (the classic DK bound keeps a constant fraction of vertices removable).
+inline constexpr int kHierarchyMaxRemovedDegree = 8;
+
+// The hierarchy stops when a level has at most this many vertices; its top is
+// scanned exhaustively.
+inline constexpr int kHierarchyTopSize = 16;
+
+// Support values within kSupportTieRel * (scale of the polytope) of the
+// maximum count as ties: the supporting feature is then an edge or a face,
+// and the search includes the features around every tied vertex.
+inline constexpr double kSupportTieRel = 1e-12;
+
+// ---- Directional queries (mdd / toi / intersect) ------------------------------
+
+// Query length scale: L = max(radius(A), radius(B), |centre(A) - centre(B)|).
+// A placement is "touching" when the signed distance is within kTouchRel * L
+// of zero; the same tolerance decides that a line grazes M (lies in a
+// supporting plane of M) rather than crossing its interior.
+inline constexpr double kTouchRel = 1e-10;
+
+// Two unit directions whose cross product is shorter than this are parallel
+// (edge pairs that cannot form an EE face, lines parallel to a plane).
+inline constexpr double kParallelSin = 1e-12;
+
+// Iteration cap of the 2D portal refinement that finds the centre of duality.
+// On a polytope it terminates in at most (vertices of the projection) steps;
+// the cap only guards against non-termination from round-off.
+inline constexpr int kMaxCentreIterations = 256;
+
+// Iteration cap of each hill-climbing phase (faces of M visited in one phase).
+// Each step strictly increases the objective, so a phase cannot exceed the
+// number of faces of M; the cap guards against round-off cycling.
+inline constexpr int kMaxSearchSteps = 100000;
+
+// The centre of duality is a convex combination w0 g + w1 m1 + w2 m2 of an
+// interior point g of M and two boundary points; the portal refinement goes on
+// until w0 is at least this (or the portal reaches the boundary of M'), so that
+// the centre keeps some distance from the boundary of M. Dimensionless.
+inline constexpr double kCentreMinWeight = 1e-3;
+
+}  // namespace mddual::defaults

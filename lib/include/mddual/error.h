@@ -1,0 +1,45 @@
+// Exception types thrown by mddual. Every error the library raises derives
+// from mddual::Error, so callers can catch the library's errors apart from
+// anything else; the message names what is wrong and where.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace mddual {
+
+/// Base of every exception thrown by mddual.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// The caller passed something unusable: empty or non-finite coordinates, too
+/// few points, a zero or non-finite direction, a null polytope.
+class InvalidInputError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// The input is well formed but geometrically degenerate in a way the library
+/// does not accept (all points collinear or coincident).
+class DegenerateGeometryError : public InvalidInputError {
+ public:
+  using InvalidInputError::InvalidInputError;
+};
+
+/// A third-party geometry kernel (qhull) failed on input we passed it.
+class HullError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// An internal consistency check failed (iteration cap reached, inconsistent
+/// topology). This is a bug or a numerical corner we did not foresee: the
+/// message carries the query in a form that can be pasted into a test.
+class NumericalError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace mddual

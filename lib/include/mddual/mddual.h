@@ -1,0 +1,9 @@
+// Umbrella header of the mddual core library.
+#pragma once
+
+#include "mddual/brute_force.h"
+#include "mddual/defaults.h"
+#include "mddual/error.h"
+#include "mddual/generators.h"
+#include "mddual/polytope.h"
+#include "mddual/query.h"

@@ -1,0 +1,162 @@
+// ConvexPolytope: a convex polytope in its own body frame, built once from a
+// point set (the convex hull, via qhull) and then posed many times by the
+// queries without rebuilding.
+//
+// Frames: every coordinate stored here is in the polytope's body frame, which
+// the accessors call "P" (p_PV is vertex V of polytope P in frame P).
+//
+// What the search needs (paper sections II-B, VI-C):
+//   - faces with unit outward normals n_P and offsets h (n . x <= h on P), the
+//     coplanar facets of the hull merged into one face;
+//   - edges with their two faces and the edge's arc on the Gaussian sphere,
+//     stored as a wedge test (see Edge);
+//   - vertex adjacency (neighbour vertices, incident edges, incident faces);
+//   - support-vertex queries: hill climbing from a hint, and for large
+//     polytopes a Dobkin-Kirkpatrick hierarchy.
+//
+// Flat polygons (all points coplanar) are valid polytopes: they have two faces
+// (normals +N and -N, same vertex loop), and every boundary edge joins those
+// two faces; its Gaussian arc is the half great circle through the edge's
+// outward in-plane normal.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
+
+namespace mddual {
+
+/// A contiguous read-only range of indices (C++17 stand-in for std::span).
+class IndexRange {
+ public:
+  IndexRange(const int* first, const int* last) : first_(first), last_(last) {}
+  const int* begin() const { return first_; }
+  const int* end() const { return last_; }
+  int size() const { return static_cast<int>(last_ - first_); }
+  int operator[](int i) const { return first_[i]; }
+
+ private:
+  const int* first_;
+  const int* last_;
+};
+
+/// Counters a support query can report (for statistics, never for control).
+struct SupportStats {
+  int vertices_visited = 0;  ///< vertices whose dot product was evaluated
+};
+
+class ConvexPolytope {
+ public:
+  /// An edge between vertices v0 and v1, shared by faces face_left and
+  /// face_right.
+  ///
+  /// dir_P is the unit edge direction, oriented so that turning about dir_P
+  /// counter-clockwise carries n(face_left) to n(face_right) through the
+  /// edge's normal cone. The normal cone of the edge (its Gaussian arc, as a
+  /// 2D wedge in the plane orthogonal to dir_P) is then
+  ///     { x orthogonal to dir_P : x . wedge_left_P >= 0 and x . wedge_right_P >= 0 }
+  /// with wedge_left_P = dir_P x n(face_left) and wedge_right_P = n(face_right)
+  /// x dir_P. This form also covers the half-circle arcs of flat polygons,
+  /// whose two face normals are opposite. Arc crossing (paper VI-B) becomes:
+  /// x = dir_a x dir_b lies in both wedges (up to sign).
+  struct Edge {
+    int v0 = -1;
+    int v1 = -1;
+    int face_left = -1;
+    int face_right = -1;
+    Eigen::Vector3d dir_P = Eigen::Vector3d::Zero();
+    Eigen::Vector3d wedge_left_P = Eigen::Vector3d::Zero();
+    Eigen::Vector3d wedge_right_P = Eigen::Vector3d::Zero();
+  };
+
+  /// Builds the convex hull of points_P (frame P). Throws InvalidInputError
+  /// for an empty set or a non-finite coordinate (naming the point index) and
+  /// DegenerateGeometryError when fewer than three points are non-collinear.
+  static ConvexPolytope fromPoints(const std::vector<Eigen::Vector3d>& points_P);
+
+  int numVertices() const { return static_cast<int>(vertices_P_.size()); }
+  int numEdges() const { return static_cast<int>(edges_.size()); }
+  int numFaces() const { return static_cast<int>(face_normals_P_.size()); }
+
+  /// True when all vertices lie in one plane (a flat polygon with two faces).
+  bool isFlat() const { return flat_; }
+
+  const Eigen::Vector3d& vertex(int v) const { return vertices_P_[v]; }
+  const std::vector<Eigen::Vector3d>& vertices() const { return vertices_P_; }
+
+  /// Unit outward normal and offset of face f: the face lies in
+  /// n . x = h and the polytope in n . x <= h.
+  const Eigen::Vector3d& faceNormal(int f) const { return face_normals_P_[f]; }
+  double faceOffset(int f) const { return face_offsets_[f]; }
+  /// The face's vertices, counter-clockwise seen from outside (along -n).
+  IndexRange faceVertices(int f) const { return range(face_vertex_begin_, face_vertex_ids_, f); }
+
+  const Edge& edge(int e) const { return edges_[e]; }
+
+  IndexRange vertexNeighbors(int v) const { return range(vertex_adj_begin_, vertex_neighbors_, v); }
+  /// Edges incident to v, in the same order as vertexNeighbors(v).
+  IndexRange vertexEdges(int v) const { return range(vertex_adj_begin_, vertex_edges_, v); }
+  IndexRange vertexFaces(int v) const { return range(vertex_face_begin_, vertex_face_ids_, v); }
+
+  /// Mean of the vertices: an interior point (relative interior if flat).
+  const Eigen::Vector3d& centroid() const { return centroid_P_; }
+  /// Largest distance from centroid() to a vertex.
+  double radius() const { return radius_; }
+
+  /// Index of a vertex v maximising d_P . vertex(v). Hill-climbs from `hint`
+  /// when one is given (>= 0), otherwise descends the Dobkin-Kirkpatrick
+  /// hierarchy (large polytopes) or hill-climbs from vertex 0. Exact for any
+  /// nonzero d_P; when several vertices tie, any of them may be returned.
+  int supportVertex(const Eigen::Vector3d& d_P, int hint = -1, SupportStats* stats = nullptr) const;
+
+  /// Hill climbing only (from `start`), for tests and benchmarks.
+  int supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats = nullptr) const;
+  /// Hierarchy descent only (falls back to hill climbing from vertex 0 when the
+  /// polytope is too small to have a hierarchy), for tests and benchmarks.
+  int supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats = nullptr) const;
+  /// Levels of the Dobkin-Kirkpatrick hierarchy (0 when there is none).
+  int hierarchyDepth() const { return static_cast<int>(levels_.size()); }
+
+  /// Appends to `out` every vertex w with d_P . vertex(w) >= d_P . vertex(v) -
+  /// tol, found by a walk from the support vertex v over tied neighbours; these
+  /// span the supporting feature (vertex, edge or face) in direction d_P.
+  void supportTies(const Eigen::Vector3d& d_P, int v, double tol, std::vector<int>* out) const;
+
+ private:
+  friend class PolytopeBuilder;
+
+  /// One level of the Dobkin-Kirkpatrick hierarchy: a subset of the vertices
+  /// of the level below, with the adjacency of its own hull.
+  struct HierarchyLevel {
+    std::vector<int> vertex_ids;       ///< original vertex index of each local vertex
+    std::vector<int> below;            ///< local index of each vertex in the level below
+    std::vector<int> adjacency_begin;  ///< CSR offsets into adjacency
+    std::vector<int> adjacency;        ///< local neighbour indices
+  };
+
+  static IndexRange range(const std::vector<int>& begin, const std::vector<int>& ids, int i) {
+    return IndexRange(ids.data() + begin[i], ids.data() + begin[i + 1]);
+  }
+  void buildHierarchy();
+  int climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start,
+                 SupportStats* stats) const;
+
+  bool flat_ = false;
+  std::vector<Eigen::Vector3d> vertices_P_;
+  std::vector<Eigen::Vector3d> face_normals_P_;
+  std::vector<double> face_offsets_;
+  std::vector<int> face_vertex_begin_;
+  std::vector<int> face_vertex_ids_;
+  std::vector<Edge> edges_;
+  std::vector<int> vertex_adj_begin_;
+  std::vector<int> vertex_neighbors_;
+  std::vector<int> vertex_edges_;
+  std::vector<int> vertex_face_begin_;
+  std::vector<int> vertex_face_ids_;
+  Eigen::Vector3d centroid_P_ = Eigen::Vector3d::Zero();
+  double radius_ = 0.0;
+  std::vector<HierarchyLevel> levels_;  ///< levels_[0] is the first coarsened level
+};
+
+}  // namespace mddual

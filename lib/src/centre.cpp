@@ -1,0 +1,148 @@
+// The centre of duality (paper IV-A), found without building M.
+//
+// The paper projects A and B along u onto a plane, builds both silhouettes and
+// their 2D Minkowski difference M' (O(n)), and locates the origin in M'. We
+// locate the origin in M' = projection of M with a 2D portal refinement
+// (Minkowski portal refinement in the plane) driven by support queries on A
+// and B, which touches O(log n) vertices per support with the hierarchy or a
+// warm start instead of all of them:
+//
+//   1. v0 = projection of g (centroid(A) - centroid(B), interior to M).
+//   2. Discovery: v1 = support of M' toward the origin, v2 = support on the
+//      other side of the ray from v0 through the origin; the portal v1-v2
+//      straddles that ray.
+//   3. Refinement: replace the portal end on the same side as the new support
+//      point in the portal's outward normal, until the origin is inside the
+//      triangle (v0, v1, v2) with a weight >= kCentreMinWeight on v0, or the
+//      portal reaches the boundary of M'.
+//   4. Result: barycentric weights (w0, w1, w2) of the origin give
+//      c = w0 g + w1 m1 + w2 m2 on the line; w0 > 0 and g interior put c in
+//      the interior of M (a convex combination with positive weight on an
+//      interior point).
+//
+// Every support value h_M(w) seen on the way is a certificate: h < -tol means
+// the line misses M (no contact), |h| <= tol that the line lies in a
+// supporting plane (grazing; answered by the planar path).
+#include "centre.h"
+
+#include <cmath>
+
+#include "mddual/defaults.h"
+#include "mddual/error.h"
+
+namespace mddual::detail {
+namespace {
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Support of M' = projection of M in a 2D direction, with the 3D point.
+struct PlanarSupport {
+  MPoint m;
+  Eigen::Vector2d v;
+  double h = 0.0;  // support value along the unit 2D direction
+  Eigen::Vector3d w_A;
+};
+
+}  // namespace
+
+Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStart* warm, SearchStats* stats) {
+  const Eigen::Vector3d t = std::abs(u_A.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = u_A.cross(t).normalized();
+  const Eigen::Vector3d e2 = u_A.cross(e1);
+  auto project = [&](const Eigen::Vector3d& x) { return Eigen::Vector2d(x.dot(e1), x.dot(e2)); };
+  const double tol = pair.touchTolerance();
+  int hint_a = warm != nullptr ? warm->support_a : -1;
+  int hint_b = warm != nullptr ? warm->support_b : -1;
+
+  Centre out;
+  auto support = [&](const Eigen::Vector2d& dir) {
+    PlanarSupport s;
+    const Eigen::Vector2d n = dir.normalized();
+    s.w_A = n.x() * e1 + n.y() * e2;
+    s.m = pair.supportM(s.w_A, hint_a, hint_b, stats);
+    hint_a = s.m.va;
+    hint_b = s.m.vb;
+    s.v = project(s.m.p_A);
+    s.h = n.dot(s.v);
+    return s;
+  };
+  // A support value proves "no contact" (h < -tol) or "grazing" (|h| <= tol).
+  auto certificate = [&](const PlanarSupport& s) {
+    if (s.h > tol) return false;
+    out.kind = s.h < -tol ? Centre::Kind::kNoContact : Centre::Kind::kGrazing;
+    out.w_A = s.w_A;
+    out.va = s.m.va;
+    out.vb = s.m.vb;
+    return true;
+  };
+  auto finish = [&](const Eigen::Vector3d& c0) {
+    if (warm != nullptr) {
+      warm->support_a = hint_a;
+      warm->support_b = hint_b;
+    }
+    out.kind = Centre::Kind::kInterior;
+    out.tau = c0.dot(u_A);
+    out.c_A = out.tau * u_A;  // exactly on the line
+    return out;
+  };
+
+  // 1. The interior point g, projected.
+  const Eigen::Vector3d& g = pair.interiorPoint();
+  const Eigen::Vector2d v0 = project(g);
+  if (v0.isZero(0.0)) return finish(g);
+
+  // 2. Discovery.
+  const Eigen::Vector2d r = -v0.normalized();
+  PlanarSupport s1 = support(r);
+  if (certificate(s1)) return out;
+  const double side1 = cross2(r, s1.v - v0);
+  if (side1 == 0.0) {
+    // v1 lies on the ray beyond the origin: the origin is on segment v0-v1.
+    const double lambda = v0.norm() / r.dot(s1.v - v0);
+    return finish((1.0 - lambda) * g + lambda * s1.m.p_A);
+  }
+  const Eigen::Vector2d perp(-r.y(), r.x());
+  PlanarSupport s2 = support(side1 > 0.0 ? Eigen::Vector2d(-perp) : perp);
+  if (certificate(s2)) return out;
+
+  // 3. Refinement.
+  for (int it = 0; it < defaults::kMaxCentreIterations; ++it) {
+    if (stats != nullptr) ++stats->centre_iterations;
+    const Eigen::Vector2d edge = s2.v - s1.v;
+    Eigen::Vector2d normal = Eigen::Vector2d(edge.y(), -edge.x()).normalized();
+    if (normal.dot(s1.v - v0) < 0.0) normal = -normal;
+    const double origin_beyond = -normal.dot(s1.v);  // > 0: origin outside the portal
+    const double v0_depth = normal.dot(s1.v - v0);   // > 0
+    const bool inside = origin_beyond <= 0.0;
+    if (inside && -origin_beyond >= defaults::kCentreMinWeight * v0_depth) break;
+    PlanarSupport s3 = support(normal);
+    if (certificate(s3)) return out;
+    if (normal.dot(s3.v - s1.v) <= tol) {
+      // The portal is on the boundary of M'.
+      if (inside) break;
+      out.kind = Centre::Kind::kGrazing;  // origin within round-off of the portal
+      out.w_A = s3.w_A;
+      out.va = s3.m.va;
+      out.vb = s3.m.vb;
+      return out;
+    }
+    if ((cross2(r, s3.v - v0) > 0.0) == (side1 > 0.0)) {
+      s1 = s3;
+    } else {
+      s2 = s3;
+    }
+    if (it + 1 == defaults::kMaxCentreIterations) {
+      throw NumericalError("centre of duality: portal refinement did not converge in " +
+                           std::to_string(defaults::kMaxCentreIterations) + " steps");
+    }
+  }
+
+  // 4. Barycentric weights of the origin in (v0, v1, v2).
+  const double area = cross2(s1.v - v0, s2.v - v0);
+  const double w1 = std::max(0.0, cross2(-v0, s2.v - v0) / area);
+  const double w2 = std::max(0.0, cross2(s1.v - v0, -v0) / area);
+  const double w0 = std::max(0.0, 1.0 - w1 - w2);
+  return finish(w0 * g + w1 * s1.m.p_A + w2 * s2.m.p_A);
+}
+
+}  // namespace mddual::detail

@@ -1,0 +1,99 @@
+#include "pair.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "mddual/error.h"
+
+namespace mddual::detail {
+namespace {
+
+void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) {
+  const Eigen::Matrix3d& R = X.linear();
+  const bool finite = R.allFinite() && X.translation().allFinite();
+  const bool rotation = finite && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
+                        R.determinant() > 0.0;
+  if (!rotation) {
+    throw InvalidInputError(std::string(query) + ": pose " + name +
+                            " is not a finite rigid transform (rotation part must be orthonormal)");
+  }
+}
+
+}  // namespace
+
+PairGeometry::PairGeometry(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
+                           const Eigen::Isometry3d& X_WB, const char* query)
+    : a_(a != nullptr ? *a : throw InvalidInputError(std::string(query) + ": polytope A is null")),
+      b_(b != nullptr ? *b : throw InvalidInputError(std::string(query) + ": polytope B is null")),
+      X_WA_(X_WA) {
+  checkPose(X_WA, "X_WA", query);
+  checkPose(X_WB, "X_WB", query);
+  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
+  R_AB_ = X_AB.linear();
+  p_AB_ = X_AB.translation();
+  g_A_ = a_.centroid() - (R_AB_ * b_.centroid() + p_AB_);
+  scale_ = std::max({a_.radius(), b_.radius(), g_A_.norm()});
+  if (a_.isFlat() && b_.isFlat()) {
+    const Eigen::Vector3d nb_A = R_AB_ * b_.faceNormal(0);
+    if (a_.faceNormal(0).cross(nb_A).norm() <= defaults::kParallelSin) {
+      flat_m_ = true;
+      flat_normal_A_ = a_.faceNormal(0);
+    }
+  }
+}
+
+int PairGeometry::supportA(const Eigen::Vector3d& d_A, int hint, SearchStats* stats) const {
+  SupportStats s;
+  const int v = a_.supportVertex(d_A, hint < a_.numVertices() ? hint : -1, &s);
+  if (stats != nullptr) stats->support_vertices += s.vertices_visited;
+  return v;
+}
+
+int PairGeometry::supportMinusB(const Eigen::Vector3d& d_A, int hint, SearchStats* stats) const {
+  SupportStats s;
+  const int v = b_.supportVertex(-aToB(d_A), hint < b_.numVertices() ? hint : -1, &s);
+  if (stats != nullptr) stats->support_vertices += s.vertices_visited;
+  return v;
+}
+
+MPoint PairGeometry::supportM(const Eigen::Vector3d& d_A, int hint_a, int hint_b, SearchStats* stats) const {
+  MPoint m;
+  m.va = supportA(d_A, hint_a, stats);
+  m.vb = supportMinusB(d_A, hint_b, stats);
+  m.p_A = a_.vertex(m.va) - bVertex(m.vb);
+  return m;
+}
+
+Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query) {
+  const double n = s.norm();
+  if (!s.allFinite() || !(n > 0.0) || !std::isfinite(n)) {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << query << ": direction [" << s.x() << ", " << s.y() << ", " << s.z()
+        << "] must be finite and nonzero";
+    throw InvalidInputError(msg.str());
+  }
+  return s / n;
+}
+
+std::string describeQuery(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                          const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s_W) {
+  std::ostringstream out;
+  out.precision(17);
+  auto points = [&](const ConvexPolytope& p, const Eigen::Isometry3d& X) {
+    out << "[";
+    for (int v = 0; v < p.numVertices(); ++v) {
+      const Eigen::Vector3d w = X * p.vertex(v);
+      out << (v > 0 ? ", " : "") << "[" << w.x() << ", " << w.y() << ", " << w.z() << "]";
+    }
+    out << "]";
+  };
+  out << R"({"id": "repro", "a": )";
+  points(a, X_WA);
+  out << R"(, "b": )";
+  points(b, X_WB);
+  out << R"(, "direction": [)" << s_W.x() << ", " << s_W.y() << ", " << s_W.z() << "]}";
+  return out.str();
+}
+
+}  // namespace mddual::detail

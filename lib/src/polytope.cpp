@@ -1,0 +1,328 @@
+// Construction of ConvexPolytope from a point set:
+//   1. validation (empty, non-finite, collinear),
+//   2. flatness test against the least-squares plane,
+//   3. hull: qhull in 3D (or 2D for flat sets), coplanar facets merged,
+//   4. topology: edges with their Gaussian-arc wedges, vertex adjacency,
+//   5. the Dobkin-Kirkpatrick hierarchy for large polytopes (support.cpp).
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include "mddual/defaults.h"
+#include "mddual/error.h"
+#include "mddual/polytope.h"
+#include "qhull_wrapper.h"
+
+namespace mddual {
+
+/// Fills a ConvexPolytope's arrays; a friend so the public class stays lean.
+class PolytopeBuilder {
+ public:
+  explicit PolytopeBuilder(ConvexPolytope* out) : out_(out) {}
+
+  void build(const std::vector<Eigen::Vector3d>& points);
+
+ private:
+  struct Face {
+    Eigen::Vector3d normal;
+    std::vector<int> loop;  // indices into points, counter-clockwise about normal
+  };
+
+  void buildFlat(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal);
+  void buildSolid(const std::vector<Eigen::Vector3d>& points, double diameter);
+  std::vector<Face> mergeCoplanar(const std::vector<detail::HullFacet>& facets,
+                                  const std::vector<Eigen::Vector3d>& points, double tol) const;
+  void finish(const std::vector<Eigen::Vector3d>& points, std::vector<Face> faces);
+
+  ConvexPolytope* out_;
+};
+
+namespace {
+
+std::string pointText(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "[" << p.x() << ", " << p.y() << ", " << p.z() << "]";
+  return s.str();
+}
+
+/// Unit vector orthogonal to n (n unit).
+Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& n) {
+  const Eigen::Vector3d t = std::abs(n.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return n.cross(t).normalized();
+}
+
+/// Unit normal of a planar loop by Newell's method (area weighted, robust to
+/// nearly collinear consecutive vertices).
+Eigen::Vector3d newellNormal(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& loop) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d& o = points[loop[0]];
+  for (size_t i = 0; i < loop.size(); ++i) {
+    n += (points[loop[i]] - o).cross(points[loop[(i + 1) % loop.size()]] - o);
+  }
+  return n.normalized();
+}
+
+struct UnionFind {
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+  std::vector<int> parent;
+};
+
+}  // namespace
+
+ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Eigen::Vector3d>& points_P) {
+  ConvexPolytope polytope;
+  PolytopeBuilder(&polytope).build(points_P);
+  return polytope;
+}
+
+void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points) {
+  // Phase 1: validation.
+  if (points.empty()) throw InvalidInputError("polytope: the point set is empty");
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite()) {
+      throw InvalidInputError("polytope: point " + std::to_string(i) + " " + pointText(points[i]) +
+                              " has a non-finite coordinate");
+    }
+  }
+  if (points.size() < 3) {
+    throw DegenerateGeometryError("polytope: " + std::to_string(points.size()) +
+                                  " point(s) given; at least three non-collinear points are needed");
+  }
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  double diameter = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d d = p - mean;
+    cov += d * d.transpose();
+    diameter = std::max(diameter, d.norm());
+  }
+  diameter *= 2.0;  // an upper bound on the diameter, within a factor 2
+  if (!(diameter > 0.0)) {
+    throw DegenerateGeometryError("polytope: all " + std::to_string(points.size()) +
+                                  " points coincide at " + pointText(points[0]));
+  }
+  // Phase 2: the least-squares line and plane (eigenvalues ascending).
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d axis = eig.eigenvectors().col(2);
+  const Eigen::Vector3d normal = eig.eigenvectors().col(0).normalized();
+  double off_line = 0.0;
+  double off_plane = 0.0;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d d = p - mean;
+    off_line = std::max(off_line, (d - d.dot(axis) * axis).norm());
+    off_plane = std::max(off_plane, std::abs(d.dot(normal)));
+  }
+  if (off_line <= defaults::kCollinearToleranceRel * diameter) {
+    throw DegenerateGeometryError("polytope: all " + std::to_string(points.size()) +
+                                  " points are collinear (fewer than three non-collinear points)");
+  }
+  // Phase 3 and 4: hull and topology.
+  if (off_plane <= defaults::kFlatToleranceRel * diameter) {
+    buildFlat(points, normal);
+  } else {
+    buildSolid(points, diameter);
+  }
+  // Phase 5: hierarchy for fast cold support queries.
+  out_->buildHierarchy();
+}
+
+void PolytopeBuilder::buildFlat(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal) {
+  const Eigen::Vector3d e1 = anyOrthogonal(normal);
+  const Eigen::Vector3d e2 = normal.cross(e1);
+  std::vector<Eigen::Vector2d> planar;
+  planar.reserve(points.size());
+  for (const Eigen::Vector3d& p : points) planar.emplace_back(p.dot(e1), p.dot(e2));
+  const std::vector<int> ring = detail::hull2d(planar, "polytope (flat polygon)");
+  out_->flat_ = true;
+  // Two faces with the same loop: +normal counter-clockwise, -normal reversed.
+  std::vector<Face> faces(2);
+  faces[0].normal = normal;
+  faces[0].loop = ring;
+  faces[1].normal = -normal;
+  faces[1].loop.assign(ring.rbegin(), ring.rend());
+  finish(points, std::move(faces));
+}
+
+void PolytopeBuilder::buildSolid(const std::vector<Eigen::Vector3d>& points, double diameter) {
+  const std::vector<detail::HullFacet> facets = detail::hull3d(points, "polytope");
+  finish(points, mergeCoplanar(facets, points, defaults::kCoplanarToleranceRel * diameter));
+}
+
+std::vector<PolytopeBuilder::Face> PolytopeBuilder::mergeCoplanar(
+    const std::vector<detail::HullFacet>& facets, const std::vector<Eigen::Vector3d>& points,
+    double tol) const {
+  const int nf = static_cast<int>(facets.size());
+  // Directed edge (a, b) -> facet holding it.
+  std::map<std::pair<int, int>, int> owner;
+  for (int f = 0; f < nf; ++f) {
+    const std::vector<int>& loop = facets[f].vertices;
+    for (size_t i = 0; i < loop.size(); ++i) owner[{loop[i], loop[(i + 1) % loop.size()]}] = f;
+  }
+  auto coplanar = [&](int f, int g) {
+    if (facets[f].normal.dot(facets[g].normal) < 1.0 - 1e-9) return false;
+    for (int v : facets[g].vertices) {
+      if (std::abs(facets[f].normal.dot(points[v]) - facets[f].offset) > tol) return false;
+    }
+    for (int v : facets[f].vertices) {
+      if (std::abs(facets[g].normal.dot(points[v]) - facets[g].offset) > tol) return false;
+    }
+    return true;
+  };
+  UnionFind groups(nf);
+  for (const auto& [key, f] : owner) {
+    const auto it = owner.find({key.second, key.first});
+    if (it != owner.end() && it->second != f && coplanar(f, it->second)) groups.unite(f, it->second);
+  }
+  // Boundary of each group: directed edges whose reverse lies in another group.
+  std::map<int, std::map<int, int>> next_of;  // group -> (a -> b)
+  for (const auto& [key, f] : owner) {
+    const auto it = owner.find({key.second, key.first});
+    const int g = groups.find(f);
+    if (it == owner.end() || groups.find(it->second) != g) next_of[g][key.first] = key.second;
+  }
+  std::vector<Face> faces;
+  for (auto& [g, next] : next_of) {
+    Face face;
+    const int start = next.begin()->first;
+    int v = start;
+    do {
+      face.loop.push_back(v);
+      const auto it = next.find(v);
+      if (it == next.end() || face.loop.size() > next.size()) {
+        throw NumericalError("polytope: merged hull face is not a simple loop");
+      }
+      v = it->second;
+    } while (v != start);
+    if (face.loop.size() != next.size()) {
+      throw NumericalError("polytope: merged hull face has several boundary loops");
+    }
+    face.normal = newellNormal(points, face.loop);
+    faces.push_back(std::move(face));
+  }
+  return faces;
+}
+
+void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::vector<Face> faces) {
+  ConvexPolytope& p = *out_;
+  // Drop boundary points that are not corners: for solids, a vertex of fewer
+  // than three faces (on an edge or inside a face); for both, a vertex where
+  // its face loop goes straight on.
+  std::vector<int> face_count(points.size(), 0);
+  for (const Face& f : faces)
+    for (int v : f.loop) ++face_count[v];
+  for (Face& f : faces) {
+    std::vector<int> kept;
+    const size_t k = f.loop.size();
+    for (size_t i = 0; i < k; ++i) {
+      const Eigen::Vector3d& a = points[f.loop[(i + k - 1) % k]];
+      const Eigen::Vector3d& b = points[f.loop[i]];
+      const Eigen::Vector3d& c = points[f.loop[(i + 1) % k]];
+      const bool straight = (b - a).cross(c - b).norm() <= 1e-14 * (b - a).norm() * (c - b).norm();
+      const bool hidden = !p.flat_ && face_count[f.loop[i]] < 3;
+      if (!straight && !hidden) kept.push_back(f.loop[i]);
+    }
+    f.loop = std::move(kept);
+  }
+  // Renumber the surviving vertices compactly.
+  std::vector<int> index_of(points.size(), -1);
+  for (const Face& f : faces) {
+    for (int v : f.loop) {
+      if (index_of[v] < 0) {
+        index_of[v] = static_cast<int>(p.vertices_P_.size());
+        p.vertices_P_.push_back(points[v]);
+      }
+    }
+  }
+  const int nv = p.numVertices();
+  // Faces.
+  p.face_vertex_begin_.push_back(0);
+  for (const Face& f : faces) {
+    double h = -std::numeric_limits<double>::infinity();
+    for (int v : f.loop) {
+      p.face_vertex_ids_.push_back(index_of[v]);
+      h = std::max(h, f.normal.dot(points[v]));
+    }
+    p.face_vertex_begin_.push_back(static_cast<int>(p.face_vertex_ids_.size()));
+    p.face_normals_P_.push_back(f.normal);
+    p.face_offsets_.push_back(h);
+  }
+  // Edges: each directed edge a->b of face f (counter-clockwise about n(f))
+  // meets its reverse in exactly one other face g. dir = b - a carries n(f) to
+  // n(g) counter-clockwise, so face_left = f and face_right = g.
+  std::map<std::pair<int, int>, int> directed;  // (a, b) -> face
+  for (int f = 0; f < p.numFaces(); ++f) {
+    const IndexRange loop = p.faceVertices(f);
+    for (int i = 0; i < loop.size(); ++i) {
+      const std::pair<int, int> key{loop[i], loop[(i + 1) % loop.size()]};
+      if (!directed.emplace(key, f).second) {
+        throw NumericalError("polytope: hull edge " + std::to_string(key.first) + "->" +
+                             std::to_string(key.second) + " appears twice");
+      }
+    }
+  }
+  std::vector<std::vector<std::pair<int, int>>> incident(nv);  // vertex -> (neighbour, edge)
+  for (const auto& [key, f] : directed) {
+    const auto rev = directed.find({key.second, key.first});
+    if (rev == directed.end()) {
+      throw NumericalError("polytope: hull edge " + std::to_string(key.first) + "-" +
+                           std::to_string(key.second) + " borders only one face");
+    }
+    if (key.first > key.second && !p.flat_) continue;  // each undirected edge once
+    if (p.flat_ && f != 0) continue;                    // flat: take face 0's direction
+    ConvexPolytope::Edge e;
+    e.v0 = key.first;
+    e.v1 = key.second;
+    e.face_left = f;
+    e.face_right = rev->second;
+    e.dir_P = (p.vertices_P_[e.v1] - p.vertices_P_[e.v0]).normalized();
+    e.wedge_left_P = e.dir_P.cross(p.face_normals_P_[e.face_left]);
+    e.wedge_right_P = p.face_normals_P_[e.face_right].cross(e.dir_P);
+    const int id = p.numEdges();
+    p.edges_.push_back(e);
+    incident[e.v0].push_back({e.v1, id});
+    incident[e.v1].push_back({e.v0, id});
+  }
+  const int euler = nv - p.numEdges() + p.numFaces();
+  if (euler != 2) {
+    throw NumericalError("polytope: hull topology fails Euler's formula (V - E + F = " +
+                         std::to_string(euler) + ")");
+  }
+  // Vertex adjacency (CSR).
+  p.vertex_adj_begin_.push_back(0);
+  for (int v = 0; v < nv; ++v) {
+    for (const auto& [w, e] : incident[v]) {
+      p.vertex_neighbors_.push_back(w);
+      p.vertex_edges_.push_back(e);
+    }
+    p.vertex_adj_begin_.push_back(static_cast<int>(p.vertex_neighbors_.size()));
+  }
+  std::vector<std::vector<int>> faces_of(nv);
+  for (int f = 0; f < p.numFaces(); ++f)
+    for (int v : p.faceVertices(f)) faces_of[v].push_back(f);
+  p.vertex_face_begin_.push_back(0);
+  for (int v = 0; v < nv; ++v) {
+    p.vertex_face_ids_.insert(p.vertex_face_ids_.end(), faces_of[v].begin(), faces_of[v].end());
+    p.vertex_face_begin_.push_back(static_cast<int>(p.vertex_face_ids_.size()));
+  }
+  // Centroid (mean of vertices: interior, or relative interior when flat).
+  p.centroid_P_.setZero();
+  for (const Eigen::Vector3d& v : p.vertices_P_) p.centroid_P_ += v;
+  p.centroid_P_ /= nv;
+  p.radius_ = 0.0;
+  for (const Eigen::Vector3d& v : p.vertices_P_) p.radius_ = std::max(p.radius_, (v - p.centroid_P_).norm());
+}
+
+}  // namespace mddual

@@ -1,0 +1,476 @@
+// The three search phases of MDD-DUAL (paper IV-B):
+//
+//   SEARCH-FV  climbs over the facets of A, each paired with its supporting
+//              vertex of -B (faces of M of type FV), neighbours = facets of A
+//              sharing a vertex;
+//   SEARCH-VF  the same over the facets of B, starting at a facet incident to
+//              the vertex of B where SEARCH-FV ended;
+//   SEARCH-EE  starts at the better of the two and climbs over all faces of M
+//              around the current one.
+//
+// Deviation from the paper, for robustness: the paper's SEARCH-EE moves over
+// EE faces only and relies on SEARCH-FV/VF having found the best FV and VF
+// faces. On degenerate inputs (coplanar facets of M, parallel edges) the FV
+// and VF climbs can stop early, so our last phase considers every face of M
+// that shares a vertex with the current one: FV faces of the facets of A at
+// the current A feature, VF faces of the facets of B at the current B feature,
+// and EE faces of the edges there whose Gaussian arcs cross. That set holds
+// every face adjacent to the current face, so the climb is a local search on
+// the dual polytope M* and ends at the global optimum whatever the first two
+// phases did. The current features are read off the face normal with a small
+// tie tolerance, so that a face whose supporting feature is an edge or a face
+// of A or B (boxes in the same orientation) sees all its neighbours.
+#include "search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "mddual/defaults.h"
+#include "mddual/error.h"
+#include "planar.h"
+
+namespace mddual::detail {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Open-addressing hash set of faces of M (paper VI-D: a hash table of
+/// visited faces). Reused across queries of one thread: clear() is O(1).
+class VisitedSet {
+ public:
+  void clear() {
+    if (++generation_ == 0) {
+      std::fill(stamps_.begin(), stamps_.end(), 0u);
+      generation_ = 1;
+    }
+    size_ = 0;
+  }
+  /// Inserts key; true when it was not there yet.
+  bool insert(std::uint64_t key) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    const std::size_t mask = keys_.size() - 1;
+    for (std::size_t i = mix(key) & mask;; i = (i + 1) & mask) {
+      if (stamps_[i] != generation_) {
+        stamps_[i] = generation_;
+        keys_[i] = key;
+        ++size_;
+        return true;
+      }
+      if (keys_[i] == key) return false;
+    }
+  }
+
+ private:
+  static std::size_t mix(std::uint64_t x) {  // splitmix64 finaliser
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    x ^= x >> 31;
+    return static_cast<std::size_t>(x);
+  }
+  void grow() {
+    std::vector<std::uint64_t> old_keys;
+    std::vector<std::uint32_t> old_stamps;
+    old_keys.swap(keys_);
+    old_stamps.swap(stamps_);
+    const std::size_t capacity = std::max<std::size_t>(64, 2 * old_keys.size());
+    keys_.assign(capacity, 0);
+    stamps_.assign(capacity, 0);
+    const std::uint32_t live = generation_;
+    size_ = 0;
+    for (std::size_t i = 0; i < old_keys.size(); ++i) {
+      if (old_stamps[i] == live) insert(old_keys[i]);
+    }
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> stamps_;
+  std::uint32_t generation_ = 1;
+  std::size_t size_ = 0;
+};
+
+std::uint64_t keyOf(FaceOfM::Kind kind, int a, int b) {
+  return (static_cast<std::uint64_t>(kind) << 62) | (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 31) |
+         static_cast<std::uint32_t>(b);
+}
+
+/// An edge of A or B with its direction, Gaussian-arc wedge and a point, all
+/// in A's frame.
+struct EdgeInA {
+  int id = -1;
+  int v0 = -1;
+  Eigen::Vector3d dir;
+  Eigen::Vector3d wedge_left;
+  Eigen::Vector3d wedge_right;
+  Eigen::Vector3d p0;
+};
+
+/// Per-thread scratch memory, so that a query does not allocate once warm.
+struct Scratch {
+  VisitedSet visited;
+  std::vector<int> ties_a;
+  std::vector<int> ties_b;
+  std::vector<EdgeInA> edges_a;
+  std::vector<EdgeInA> edges_b;
+};
+
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+struct Candidate {
+  FaceOfM face;
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  double h = 0.0;
+  double phi = -kInf;
+  int va = -1;
+  int vb = -1;
+};
+
+class Searcher {
+ public:
+  Searcher(const PairGeometry& pair, const RayQuery& query, SearchStats* stats)
+      : pair_(pair), a_(pair.a()), b_(pair.b()), q_(query), stats_(stats), s_(scratch()) {
+    s_.visited.clear();
+  }
+
+  RayExit run();
+
+ private:
+  enum class Phase { kFV, kVF, kEE };
+
+  double objective(const Eigen::Vector3d& n, double h) const {
+    const double along = n.dot(q_.w_A);
+    const double depth = h - n.dot(q_.c_A);
+    if (depth > 0.0) return along / depth;
+    return along > 0.0 ? kInf : -kInf;  // c on the plane (round-off): exit at c
+  }
+  void evalFV(int fa, int hint_b, Candidate* c) const;
+  void evalVF(int fb, int hint_a, Candidate* c) const;
+  bool evalEE(const EdgeInA& ea, const EdgeInA& eb, Candidate* c) const;
+  /// Books a newly evaluated face; returns true when an early exit fired.
+  bool take(const Candidate& c, Phase phase, Candidate* best);
+  void checkSteps();
+
+  Candidate coldStart();
+  Candidate warmStart();
+  Candidate searchFV(Candidate current);
+  Candidate searchVF(const Candidate& fv);
+  Candidate searchEE(Candidate current);
+  void collectEdges(const std::vector<int>& ties, bool of_b, std::vector<EdgeInA>* out) const;
+  EdgeInA edgeInA(int e, bool of_b) const;
+
+  const PairGeometry& pair_;
+  const ConvexPolytope& a_;
+  const ConvexPolytope& b_;
+  const RayQuery& q_;
+  SearchStats* stats_;
+  Scratch& s_;
+  bool stopped_ = false;
+  Candidate stop_face_;
+  int steps_ = 0;
+  double min_h_ = kInf;
+};
+
+void Searcher::evalFV(int fa, int hint_b, Candidate* c) const {
+  // FV face: facet fa of A plus the vertex of -B supporting n(fa).
+  c->face = {FaceOfM::Kind::kFV, fa, 0};
+  c->n = a_.faceNormal(fa);
+  c->vb = pair_.supportMinusB(c->n, hint_b, stats_);
+  c->va = a_.faceVertices(fa)[0];
+  c->h = a_.faceOffset(fa) - c->n.dot(pair_.bVertex(c->vb));
+  c->phi = objective(c->n, c->h);
+}
+
+void Searcher::evalVF(int fb, int hint_a, Candidate* c) const {
+  // VF face: the vertex of A supporting n plus facet fb of -B, n = -n(fb).
+  // Its offset is h_A(n) + h_-B(n) with h_-B(n) = offset(fb) - n . p_AB.
+  c->face = {FaceOfM::Kind::kVF, 0, fb};
+  c->n = -pair_.bToA(b_.faceNormal(fb));
+  c->va = pair_.supportA(c->n, hint_a, stats_);
+  c->vb = b_.faceVertices(fb)[0];
+  c->h = c->n.dot(a_.vertex(c->va)) + b_.faceOffset(fb) - c->n.dot(pair_.p_AB());
+  c->phi = objective(c->n, c->h);
+}
+
+bool Searcher::evalEE(const EdgeInA& ea, const EdgeInA& eb, Candidate* c) const {
+  // EE face (paper II-C, VI-B): the Gaussian arcs of edge ea of A and of edge
+  // -eb of -B cross at n = +-(dir_a x dir_b). n is on the arc of ea when it is
+  // in ea's wedge, and on the arc of -eb when -n is in eb's wedge.
+  Eigen::Vector3d x = ea.dir.cross(eb.dir);
+  const double sine = x.norm();
+  if (sine <= defaults::kParallelSin) return false;  // parallel edges: no EE face
+  x /= sine;
+  for (const double sign : {1.0, -1.0}) {
+    const Eigen::Vector3d n = sign * x;
+    if (n.dot(ea.wedge_left) >= 0.0 && n.dot(ea.wedge_right) >= 0.0 && n.dot(eb.wedge_left) <= 0.0 &&
+        n.dot(eb.wedge_right) <= 0.0) {
+      c->face = {FaceOfM::Kind::kEE, ea.id, eb.id};
+      c->n = n;
+      c->h = n.dot(ea.p0) - n.dot(eb.p0);
+      c->va = ea.v0;
+      c->vb = eb.v0;
+      c->phi = objective(n, c->h);
+      return true;
+    }
+  }
+  return false;
+}
+
+bool Searcher::take(const Candidate& c, Phase phase, Candidate* best) {
+  if (stats_ != nullptr) {
+    if (phase == Phase::kFV) ++stats_->fv_faces;
+    if (phase == Phase::kVF) ++stats_->vf_faces;
+    if (phase == Phase::kEE) {
+      ++stats_->ee_faces;
+      if (c.face.kind == FaceOfM::Kind::kEE) ++stats_->ee_edge_faces;
+    }
+  }
+  min_h_ = std::min(min_h_, c.h);
+  if (c.phi > best->phi) *best = c;
+  if (c.phi > q_.phi_stop || c.h < q_.h_stop) {
+    stopped_ = true;
+    stop_face_ = c;
+  }
+  return stopped_;
+}
+
+void Searcher::checkSteps() {
+  if (stats_ != nullptr) ++stats_->steps;
+  if (++steps_ > defaults::kMaxSearchSteps) {
+    throw NumericalError("MDD-DUAL search: no optimum after " + std::to_string(defaults::kMaxSearchSteps) +
+                         " steps (round-off cycling)");
+  }
+}
+
+Candidate Searcher::coldStart() {
+  // Paper VI-A: start at the facet of A whose normal is closest to the ray
+  // direction, found among the facets at A's support vertex in that direction.
+  const int v = pair_.supportA(q_.w_A, -1, stats_);
+  int best_face = a_.vertexFaces(v)[0];
+  double best_dot = -kInf;
+  for (int f : a_.vertexFaces(v)) {
+    const double d = a_.faceNormal(f).dot(q_.w_A);
+    if (d > best_dot) {
+      best_dot = d;
+      best_face = f;
+    }
+  }
+  Candidate c;
+  evalFV(best_face, -1, &c);
+  s_.visited.insert(keyOf(c.face.kind, c.face.a, c.face.b));
+  Candidate none;
+  take(c, Phase::kFV, &none);
+  return c;
+}
+
+Candidate Searcher::warmStart() {
+  const FaceOfM& w = q_.warm;
+  Candidate c;
+  bool ok = false;
+  if (w.kind == FaceOfM::Kind::kFV && w.a >= 0 && w.a < a_.numFaces()) {
+    evalFV(w.a, w.b >= 0 && w.b < b_.numVertices() ? w.b : -1, &c);
+    ok = true;
+  } else if (w.kind == FaceOfM::Kind::kVF && w.b >= 0 && w.b < b_.numFaces()) {
+    evalVF(w.b, w.a >= 0 && w.a < a_.numVertices() ? w.a : -1, &c);
+    ok = true;
+  } else if (w.kind == FaceOfM::Kind::kEE && w.a >= 0 && w.a < a_.numEdges() && w.b >= 0 && w.b < b_.numEdges()) {
+    // The edge pair may no longer cross after the motion: then fall back to
+    // the FV face of a facet of A at that edge.
+    ok = evalEE(edgeInA(w.a, false), edgeInA(w.b, true), &c);
+    if (!ok) {
+      evalFV(a_.edge(w.a).face_left, b_.edge(w.b).v0, &c);
+      ok = true;
+    }
+  }
+  if (!ok) return coldStart();
+  s_.visited.insert(keyOf(c.face.kind, c.face.a, c.face.b));
+  Candidate none;
+  take(c, Phase::kEE, &none);
+  return c;
+}
+
+Candidate Searcher::searchFV(Candidate current) {
+  for (;;) {
+    Candidate best = current;
+    for (int v : a_.faceVertices(current.face.a)) {
+      for (int f : a_.vertexFaces(v)) {
+        if (!s_.visited.insert(keyOf(FaceOfM::Kind::kFV, f, 0))) continue;
+        Candidate c;
+        evalFV(f, current.vb, &c);
+        if (take(c, Phase::kFV, &best)) return best;
+      }
+    }
+    if (!(best.phi > current.phi)) return current;
+    current = best;
+    checkSteps();
+  }
+}
+
+Candidate Searcher::searchVF(const Candidate& fv) {
+  // Start: the best facet of B at the vertex of B where SEARCH-FV ended.
+  Candidate current;
+  for (int f : b_.vertexFaces(fv.vb)) {
+    if (!s_.visited.insert(keyOf(FaceOfM::Kind::kVF, 0, f))) continue;
+    Candidate c;
+    evalVF(f, fv.va, &c);
+    if (take(c, Phase::kVF, &current)) return current;
+  }
+  if (current.face.kind == FaceOfM::Kind::kNone) return fv;
+  for (;;) {
+    Candidate best = current;
+    for (int v : b_.faceVertices(current.face.b)) {
+      for (int f : b_.vertexFaces(v)) {
+        if (!s_.visited.insert(keyOf(FaceOfM::Kind::kVF, 0, f))) continue;
+        Candidate c;
+        evalVF(f, current.va, &c);
+        if (take(c, Phase::kVF, &best)) return best;
+      }
+    }
+    if (!(best.phi > current.phi)) return current;
+    current = best;
+    checkSteps();
+  }
+}
+
+EdgeInA Searcher::edgeInA(int e, bool of_b) const {
+  const ConvexPolytope::Edge& edge = (of_b ? b_ : a_).edge(e);
+  EdgeInA x;
+  x.id = e;
+  x.v0 = edge.v0;
+  if (of_b) {
+    x.dir = pair_.bToA(edge.dir_P);
+    x.wedge_left = pair_.bToA(edge.wedge_left_P);
+    x.wedge_right = pair_.bToA(edge.wedge_right_P);
+    x.p0 = pair_.bVertex(edge.v0);
+  } else {
+    x.dir = edge.dir_P;
+    x.wedge_left = edge.wedge_left_P;
+    x.wedge_right = edge.wedge_right_P;
+    x.p0 = a_.vertex(edge.v0);
+  }
+  return x;
+}
+
+void Searcher::collectEdges(const std::vector<int>& ties, bool of_b, std::vector<EdgeInA>* out) const {
+  out->clear();
+  const ConvexPolytope& p = of_b ? b_ : a_;
+  for (int v : ties) {
+    for (int e : p.vertexEdges(v)) {
+      if (std::any_of(out->begin(), out->end(), [e](const EdgeInA& x) { return x.id == e; })) continue;
+      out->push_back(edgeInA(e, of_b));
+    }
+  }
+}
+
+Candidate Searcher::searchEE(Candidate current) {
+  const double tie = pair_.tieTolerance();
+  for (;;) {
+    // The features of A and B that support the current face's normal.
+    s_.ties_a.clear();
+    s_.ties_b.clear();
+    a_.supportTies(current.n, current.va, tie, &s_.ties_a);
+    b_.supportTies(-pair_.aToB(current.n), current.vb, tie, &s_.ties_b);
+    Candidate best = current;
+    for (int v : s_.ties_a) {
+      for (int f : a_.vertexFaces(v)) {
+        if (!s_.visited.insert(keyOf(FaceOfM::Kind::kFV, f, 0))) continue;
+        Candidate c;
+        evalFV(f, current.vb, &c);
+        if (take(c, Phase::kEE, &best)) return best;
+      }
+    }
+    for (int v : s_.ties_b) {
+      for (int f : b_.vertexFaces(v)) {
+        if (!s_.visited.insert(keyOf(FaceOfM::Kind::kVF, 0, f))) continue;
+        Candidate c;
+        evalVF(f, current.va, &c);
+        if (take(c, Phase::kEE, &best)) return best;
+      }
+    }
+    collectEdges(s_.ties_a, false, &s_.edges_a);
+    collectEdges(s_.ties_b, true, &s_.edges_b);
+    for (const EdgeInA& ea : s_.edges_a) {
+      for (const EdgeInA& eb : s_.edges_b) {
+        if (!s_.visited.insert(keyOf(FaceOfM::Kind::kEE, ea.id, eb.id))) continue;
+        Candidate c;
+        if (evalEE(ea, eb, &c) && take(c, Phase::kEE, &best)) return best;
+      }
+    }
+    if (!(best.phi > current.phi)) return current;
+    current = best;
+    checkSteps();
+  }
+}
+
+RayExit Searcher::run() {
+  Candidate best;
+  if (q_.warm.kind != FaceOfM::Kind::kNone) {
+    best = warmStart();
+  } else {
+    const Candidate start = coldStart();
+    const Candidate fv = stopped_ ? start : searchFV(start);
+    const Candidate vf = stopped_ ? fv : searchVF(fv);
+    best = vf.phi > fv.phi ? vf : fv;
+  }
+  if (!stopped_) best = searchEE(best);
+  if (stopped_) best = stop_face_;
+  RayExit out;
+  out.face = best.face;
+  out.n_A = best.n;
+  out.h = best.h;
+  out.phi = best.phi;
+  out.va = best.va;
+  out.vb = best.vb;
+  out.stopped = stopped_;
+  out.min_h = min_h_;
+  return out;
+}
+
+}  // namespace
+
+RayExit searchRay(const PairGeometry& pair, const RayQuery& query, SearchStats* stats) {
+  if (stats != nullptr) ++stats->rays;
+  return Searcher(pair, query, stats).run();
+}
+
+Eigen::Vector3d contactPointOnA(const PairGeometry& pair, const RayExit& exit, const Eigen::Vector3d& x_A) {
+  std::vector<int> ties_a;
+  std::vector<int> ties_b;
+  const double tie = pair.tieTolerance();
+  pair.a().supportTies(exit.n_A, exit.va, tie, &ties_a);
+  pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, tie, &ties_b);
+  // x = a - b with a on A's supporting feature and b on B's.
+  if (ties_a.size() == 1) return pair.a().vertex(ties_a[0]);
+  if (ties_b.size() == 1) return x_A + pair.bVertex(ties_b[0]);
+  std::vector<Eigen::Vector3d> pa;
+  std::vector<Eigen::Vector3d> pb;
+  for (int v : ties_a) pa.push_back(pair.a().vertex(v));
+  for (int v : ties_b) pb.push_back(pair.bVertex(v));
+  if (pa.size() == 2 && pb.size() == 2) {
+    // Edge-edge: the point of edge a0-a1 closest to the line (b0-b1) + x.
+    const Eigen::Vector3d da = pa[1] - pa[0];
+    const Eigen::Vector3d db = pb[1] - pb[0];
+    const Eigen::Vector3d r = pa[0] - (pb[0] + x_A);
+    const double aa = da.dot(da), ab = da.dot(db), bb = db.dot(db);
+    const double denom = aa * bb - ab * ab;
+    if (denom > 1e-24 * aa * bb) {
+      const double lambda = std::clamp((ab * db.dot(r) - bb * da.dot(r)) / denom, 0.0, 1.0);
+      return pa[0] + lambda * da;
+    }
+  }
+  // General case (a face of M spanned by larger features): decompose x in the
+  // face's plane, interpolating between the ends of a slice through x.
+  const PlanarDifference face(pa, pb, exit.n_A);
+  const Eigen::Vector3d t = std::abs(exit.n_A.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const PlanarSlice slice = face.slice(x_A, exit.n_A.cross(t).normalized(), pair.touchTolerance());
+  if (!slice.hit) return x_A + pb[0];
+  if (!(slice.s_hi > slice.s_lo)) return slice.a_lo;
+  const double lambda = std::clamp(-slice.s_lo / (slice.s_hi - slice.s_lo), 0.0, 1.0);
+  return slice.a_lo + lambda * (slice.a_hi - slice.a_lo);
+}
+
+}  // namespace mddual::detail

@@ -1,0 +1,211 @@
+// Support-vertex queries: hill climbing on the vertex graph, and the
+// Dobkin-Kirkpatrick hierarchy for large polytopes.
+//
+// Hill climbing is exact on a convex polytope: for a linear objective every
+// vertex that is not a maximiser has a strictly better neighbour (the graph of
+// a polytope is "monotone" for linear functions), so a climb that stops at a
+// vertex with no better neighbour has found a global maximiser.
+//
+// The hierarchy (Dobkin and Kirkpatrick; the MDD-DUAL paper cites it for its
+// support queries) is a sequence of nested polytopes P_0 = P, P_1, ..., P_k,
+// each the hull of the vertices of the previous one minus an independent set of
+// low-degree vertices, down to a constant size. A query scans P_k, then on
+// each level climbs from the previous level's answer. The DK lemma bounds the
+// climb on each level by a constant number of steps, so a cold query costs
+// O(log n); because each level is itself climbed to a local (hence global)
+// maximum, the answer is exact even where ties break the lemma's assumptions.
+#include <algorithm>
+#include <numeric>
+
+#include "mddual/defaults.h"
+#include "mddual/polytope.h"
+#include "qhull_wrapper.h"
+
+namespace mddual {
+namespace {
+
+/// Edges (as local neighbour lists) of the hull of a subset of vertices.
+/// Returns false when the subset's hull is flat (then the level is not built).
+bool hullAdjacency(const std::vector<Eigen::Vector3d>& points, std::vector<int>* kept,
+                   std::vector<std::vector<int>>* adjacency) {
+  std::vector<detail::HullFacet> facets;
+  try {
+    facets = detail::hull3d(points, "support hierarchy level");
+  } catch (const std::exception&) {
+    return false;
+  }
+  std::vector<int> local(points.size(), -1);
+  kept->clear();
+  for (const detail::HullFacet& f : facets) {
+    for (int v : f.vertices) {
+      if (local[v] < 0) {
+        local[v] = static_cast<int>(kept->size());
+        kept->push_back(v);
+      }
+    }
+  }
+  adjacency->assign(kept->size(), {});
+  for (const detail::HullFacet& f : facets) {
+    const size_t k = f.vertices.size();
+    for (size_t i = 0; i < k; ++i) {
+      const int a = local[f.vertices[i]];
+      const int b = local[f.vertices[(i + 1) % k]];
+      (*adjacency)[a].push_back(b);  // each undirected edge is seen once per direction
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats) const {
+  int best = start;
+  double best_value = d_P.dot(vertices_P_[best]);
+  int visited = 1;
+  for (;;) {
+    int next = best;
+    for (int w : vertexNeighbors(best)) {
+      const double value = d_P.dot(vertices_P_[w]);
+      ++visited;
+      if (value > best_value) {
+        best_value = value;
+        next = w;
+      }
+    }
+    if (next == best) break;
+    best = next;
+  }
+  if (stats != nullptr) stats->vertices_visited += visited;
+  return best;
+}
+
+int ConvexPolytope::climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start,
+                               SupportStats* stats) const {
+  int best = local_start;
+  double best_value = d_P.dot(vertices_P_[level.vertex_ids[best]]);
+  int visited = 1;
+  for (;;) {
+    int next = best;
+    for (int i = level.adjacency_begin[best]; i < level.adjacency_begin[best + 1]; ++i) {
+      const int w = level.adjacency[i];
+      const double value = d_P.dot(vertices_P_[level.vertex_ids[w]]);
+      ++visited;
+      if (value > best_value) {
+        best_value = value;
+        next = w;
+      }
+    }
+    if (next == best) break;
+    best = next;
+  }
+  if (stats != nullptr) stats->vertices_visited += visited;
+  return best;
+}
+
+int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats) const {
+  if (levels_.empty()) return supportVertexHillClimb(d_P, 0, stats);
+  // Top level: exhaustive scan of a constant number of vertices.
+  const HierarchyLevel& top = levels_.back();
+  int local = 0;
+  double best = -std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(top.vertex_ids.size()); ++i) {
+    const double value = d_P.dot(vertices_P_[top.vertex_ids[i]]);
+    if (value > best) {
+      best = value;
+      local = i;
+    }
+  }
+  if (stats != nullptr) stats->vertices_visited += static_cast<int>(top.vertex_ids.size());
+  // Descend: climb each finer level from the coarser level's answer.
+  for (int k = static_cast<int>(levels_.size()) - 1; k >= 1; --k) {
+    local = climbLevel(levels_[k - 1], d_P, levels_[k].below[local], stats);
+  }
+  return supportVertexHillClimb(d_P, levels_[0].below[local], stats);
+}
+
+int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportStats* stats) const {
+  if (hint >= 0) return supportVertexHillClimb(d_P, hint, stats);
+  return supportVertexHierarchy(d_P, stats);
+}
+
+void ConvexPolytope::supportTies(const Eigen::Vector3d& d_P, int v, double tol, std::vector<int>* out) const {
+  const size_t first = out->size();
+  const double threshold = d_P.dot(vertices_P_[v]) - tol;
+  out->push_back(v);
+  // Breadth-first walk over tied vertices. Tie sets are small (a face at
+  // most), so membership is a linear scan of what this call appended.
+  for (size_t i = first; i < out->size(); ++i) {
+    for (int w : vertexNeighbors((*out)[i])) {
+      if (d_P.dot(vertices_P_[w]) < threshold) continue;
+      if (std::find(out->begin() + static_cast<std::ptrdiff_t>(first), out->end(), w) == out->end()) {
+        out->push_back(w);
+      }
+    }
+  }
+}
+
+void ConvexPolytope::buildHierarchy() {
+  levels_.clear();
+  if (numVertices() <= defaults::kHierarchyMinVertices) return;
+
+  // Current level: original ids and adjacency lists in local indices.
+  std::vector<int> ids(numVertices());
+  std::iota(ids.begin(), ids.end(), 0);
+  std::vector<std::vector<int>> adjacency(numVertices());
+  for (int v = 0; v < numVertices(); ++v) {
+    for (int w : vertexNeighbors(v)) adjacency[v].push_back(w);
+  }
+  while (static_cast<int>(ids.size()) > defaults::kHierarchyTopSize) {
+    // Independent set of low-degree vertices, greedily in index order.
+    const int n = static_cast<int>(ids.size());
+    std::vector<char> removed(n, 0);
+    std::vector<char> blocked(n, 0);
+    for (int i = 0; i < n; ++i) {
+      if (blocked[i] || static_cast<int>(adjacency[i].size()) > defaults::kHierarchyMaxRemovedDegree) continue;
+      removed[i] = 1;
+      for (int w : adjacency[i]) blocked[w] = 1;
+    }
+    std::vector<int> survivors;  // local indices in the current level
+    for (int i = 0; i < n; ++i)
+      if (!removed[i]) survivors.push_back(i);
+    if (static_cast<int>(survivors.size()) == n) break;  // nothing removable
+
+    HierarchyLevel level;
+    std::vector<std::vector<int>> next_adjacency;
+    if (flat_) {
+      // Subsets of a convex polygon's vertices stay in convex position; the
+      // ring order of the survivors is their hull. Level 0's ring is face 0.
+      std::vector<int> ring_pos(n, -1);
+      if (levels_.empty()) {
+        const IndexRange loop = faceVertices(0);
+        for (int i = 0; i < loop.size(); ++i) ring_pos[loop[i]] = i;
+        std::sort(survivors.begin(), survivors.end(), [&](int a, int b) { return ring_pos[a] < ring_pos[b]; });
+      }
+      const int m = static_cast<int>(survivors.size());
+      next_adjacency.assign(m, {});
+      for (int i = 0; i < m; ++i) {
+        next_adjacency[i] = {(i + m - 1) % m, (i + 1) % m};
+      }
+      level.below = survivors;
+    } else {
+      std::vector<Eigen::Vector3d> points;
+      for (int i : survivors) points.push_back(vertices_P_[ids[i]]);
+      std::vector<int> kept;
+      if (!hullAdjacency(points, &kept, &next_adjacency)) break;
+      for (int k : kept) level.below.push_back(survivors[k]);
+    }
+    for (int b : level.below) level.vertex_ids.push_back(ids[b]);
+    // Level 0 maps to the full polytope by original id.
+    if (levels_.empty()) level.below = level.vertex_ids;
+    level.adjacency_begin.push_back(0);
+    for (const std::vector<int>& nbrs : next_adjacency) {
+      level.adjacency.insert(level.adjacency.end(), nbrs.begin(), nbrs.end());
+      level.adjacency_begin.push_back(static_cast<int>(level.adjacency.size()));
+    }
+    ids = level.vertex_ids;
+    adjacency = std::move(next_adjacency);
+    levels_.push_back(std::move(level));
+  }
+}
+
+}  // namespace mddual

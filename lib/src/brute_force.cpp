@@ -82,8 +82,8 @@ ClippedLine clip(const std::vector<Constraint>& constraints, const Eigen::Vector
 /// A point a of A with x = a - b, b in B, x on constraint c of M: x is
 /// written in the vertices of M on c (fan triangles of a face, or a segment),
 /// and a is the same combination of the A vertices behind them.
-Eigen::Vector3d decompose(const MinkowskiDifference& md, const std::vector<Eigen::Vector3d>& a_W,
-                          const Constraint& c, const Eigen::Vector3d& x) {
+Eigen::Vector3d decompose(const MinkowskiDifference& md, const std::vector<Eigen::Vector3d>& a_W, const Constraint& c,
+                          const Eigen::Vector3d& x) {
   const ConvexPolytope& m = md.polytope;
   auto a_of = [&](int k) { return a_W[md.source[k].first]; };
   const std::vector<int>& vs = c.vertices;

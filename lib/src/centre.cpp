@@ -33,7 +33,9 @@
 namespace mddual::detail {
 namespace {
 
-double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// Support of M' = projection of M in a 2D direction, with the 3D point.
 struct PlanarSupport {

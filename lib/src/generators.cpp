@@ -18,7 +18,9 @@ void ellipseRing(int k, double a, double b, double z, double phase, Points* out)
   }
 }
 
-double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+double uniform(Rng& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
 
 }  // namespace
 
@@ -61,9 +63,8 @@ Points roundedCubeRandom(int vertices, Rng& rng) {
   Points p;
   for (int i = 0; i < vertices; ++i) {
     const Eigen::Vector3d d = randomUnitVector(rng);
-    const double norm6 = std::pow(std::pow(std::abs(d.x()), 6) + std::pow(std::abs(d.y()), 6) +
-                                      std::pow(std::abs(d.z()), 6),
-                                  1.0 / 6.0);
+    const double norm6 =
+        std::pow(std::pow(std::abs(d.x()), 6) + std::pow(std::abs(d.y()), 6) + std::pow(std::abs(d.z()), 6), 1.0 / 6.0);
     p.push_back(kHalfWidth * d / norm6);
   }
   return p;
@@ -126,12 +127,13 @@ Points lattice(int nx, int ny, int nz, double spacing) {
   return p;
 }
 
-Points triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) { return {p, q, r}; }
+Points triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
+  return {p, q, r};
+}
 
 Points regularTetrahedron(double edge) {
   const double s = edge / (2.0 * std::sqrt(2.0));
-  return {Eigen::Vector3d(s, s, s), Eigen::Vector3d(s, -s, -s), Eigen::Vector3d(-s, s, -s),
-          Eigen::Vector3d(-s, -s, s)};
+  return {Eigen::Vector3d(s, s, s), Eigen::Vector3d(s, -s, -s), Eigen::Vector3d(-s, s, -s), Eigen::Vector3d(-s, -s, s)};
 }
 
 Eigen::Matrix3d randomRotation(Rng& rng) {

@@ -11,8 +11,8 @@ namespace {
 void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) {
   const Eigen::Matrix3d& R = X.linear();
   const bool finite = R.allFinite() && X.translation().allFinite();
-  const bool rotation = finite && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 &&
-                        R.determinant() > 0.0;
+  const bool rotation =
+      finite && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0;
   if (!rotation) {
     throw InvalidInputError(std::string(query) + ": pose " + name +
                             " is not a finite rigid transform (rotation part must be orthonormal)");
@@ -69,8 +69,7 @@ Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query) {
   if (!s.allFinite() || !(n > 0.0) || !std::isfinite(n)) {
     std::ostringstream msg;
     msg.precision(17);
-    msg << query << ": direction [" << s.x() << ", " << s.y() << ", " << s.z()
-        << "] must be finite and nonzero";
+    msg << query << ": direction [" << s.x() << ", " << s.y() << ", " << s.z() << "] must be finite and nonzero";
     throw InvalidInputError(msg.str());
   }
   return s / n;

@@ -111,8 +111,8 @@ void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points) {
   }
   diameter *= 2.0;  // an upper bound on the diameter, within a factor 2
   if (!(diameter > 0.0)) {
-    throw DegenerateGeometryError("polytope: all " + std::to_string(points.size()) +
-                                  " points coincide at " + pointText(points[0]));
+    throw DegenerateGeometryError("polytope: all " + std::to_string(points.size()) + " points coincide at " +
+                                  pointText(points[0]));
   }
   // Phase 2: the least-squares line and plane (eigenvalues ascending).
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
@@ -161,9 +161,9 @@ void PolytopeBuilder::buildSolid(const std::vector<Eigen::Vector3d>& points, dou
   finish(points, mergeCoplanar(facets, points, defaults::kCoplanarToleranceRel * diameter));
 }
 
-std::vector<PolytopeBuilder::Face> PolytopeBuilder::mergeCoplanar(
-    const std::vector<detail::HullFacet>& facets, const std::vector<Eigen::Vector3d>& points,
-    double tol) const {
+std::vector<PolytopeBuilder::Face> PolytopeBuilder::mergeCoplanar(const std::vector<detail::HullFacet>& facets,
+                                                                  const std::vector<Eigen::Vector3d>& points,
+                                                                  double tol) const {
   const int nf = static_cast<int>(facets.size());
   // Directed edge (a, b) -> facet holding it.
   std::map<std::pair<int, int>, int> owner;
@@ -268,8 +268,8 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
     for (int i = 0; i < loop.size(); ++i) {
       const std::pair<int, int> key{loop[i], loop[(i + 1) % loop.size()]};
       if (!directed.emplace(key, f).second) {
-        throw NumericalError("polytope: hull edge " + std::to_string(key.first) + "->" +
-                             std::to_string(key.second) + " appears twice");
+        throw NumericalError("polytope: hull edge " + std::to_string(key.first) + "->" + std::to_string(key.second) +
+                             " appears twice");
       }
     }
   }
@@ -277,11 +277,11 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
   for (const auto& [key, f] : directed) {
     const auto rev = directed.find({key.second, key.first});
     if (rev == directed.end()) {
-      throw NumericalError("polytope: hull edge " + std::to_string(key.first) + "-" +
-                           std::to_string(key.second) + " borders only one face");
+      throw NumericalError("polytope: hull edge " + std::to_string(key.first) + "-" + std::to_string(key.second) +
+                           " borders only one face");
     }
     if (key.first > key.second && !p.flat_) continue;  // each undirected edge once
-    if (p.flat_ && f != 0) continue;                    // flat: take face 0's direction
+    if (p.flat_ && f != 0) continue;                   // flat: take face 0's direction
     ConvexPolytope::Edge e;
     e.v0 = key.first;
     e.v1 = key.second;
@@ -297,8 +297,7 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
   }
   const int euler = nv - p.numEdges() + p.numFaces();
   if (euler != 2) {
-    throw NumericalError("polytope: hull topology fails Euler's formula (V - E + F = " +
-                         std::to_string(euler) + ")");
+    throw NumericalError("polytope: hull topology fails Euler's formula (V - E + F = " + std::to_string(euler) + ")");
   }
   // Vertex adjacency (CSR).
   p.vertex_adj_begin_.push_back(0);

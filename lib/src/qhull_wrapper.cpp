@@ -47,11 +47,9 @@ class QhullRun {
     qh_zero(&qh_, errors_.stream());
     char options[] = "qhull";  // default: premerge coplanar facets (C-0)
     const int count = static_cast<int>(coords->size()) / dim;
-    exit_code_ = qh_new_qhull(&qh_, dim, count, coords->data(), False, options, nullptr,
-                              errors_.stream());
+    exit_code_ = qh_new_qhull(&qh_, dim, count, coords->data(), False, options, nullptr, errors_.stream());
     if (exit_code_ != 0) {
-      throw HullError(what + ": qhull failed (exit code " + std::to_string(exit_code_) +
-                      "): " + errors_.text());
+      throw HullError(what + ": qhull failed (exit code " + std::to_string(exit_code_) + "): " + errors_.text());
     }
   }
   ~QhullRun() {
@@ -91,7 +89,9 @@ std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const 
     setT* ordered = qh_facet3vertex(qh, facet);
     vertexT* vertex = nullptr;
     vertexT** vertexp = nullptr;
-    FOREACHvertex_(ordered) { out.vertices.push_back(qh_pointid(qh, vertex->point)); }
+    FOREACHvertex_(ordered) {
+      out.vertices.push_back(qh_pointid(qh, vertex->point));
+    }
     qh_settempfree(qh, &ordered);
     // Orient counter-clockwise about the outward normal (Newell's normal).
     Eigen::Vector3d newell = Eigen::Vector3d::Zero();
@@ -128,8 +128,8 @@ std::vector<int> hull2d(const std::vector<Eigen::Vector2d>& points, const std::s
     // The neighbour facet that contains `next`.
     facetT* n0 = static_cast<facetT*>(facet->neighbors->e[0].p);
     facetT* n1 = static_cast<facetT*>(facet->neighbors->e[1].p);
-    const bool n0_has = static_cast<vertexT*>(n0->vertices->e[0].p) == next ||
-                        static_cast<vertexT*>(n0->vertices->e[1].p) == next;
+    const bool n0_has =
+        static_cast<vertexT*>(n0->vertices->e[0].p) == next || static_cast<vertexT*>(n0->vertices->e[1].p) == next;
     prev = next;
     facet = n0_has ? n0 : n1;
   } while (facet != start && ring.size() <= points.size());

@@ -110,7 +110,8 @@ std::vector<Eigen::Vector3d> pointsInA(const PairGeometry& pair, bool of_b, cons
 
 /// Contacts at both ends of a planar slice {s d} (s along d = +-u).
 LineInterval intervalFromSlice(const PairGeometry& pair, const PlanarSlice& slice, double scale_t,
-                               const Eigen::Vector3d& normal_lo_A, const Eigen::Vector3d& normal_hi_A, bool use_slice_normals) {
+                               const Eigen::Vector3d& normal_lo_A, const Eigen::Vector3d& normal_hi_A,
+                               bool use_slice_normals) {
   LineInterval out;
   out.hit = slice.hit;
   if (!slice.hit) return out;
@@ -156,7 +157,8 @@ LineInterval flatInterval(const PairGeometry& pair, const Eigen::Vector3d& u_A, 
   // The line crosses M's plane once, at t*: a contact iff that point is in M.
   const double t_star = k / along;
   const Eigen::Vector3d x = t_star * u_A;
-  const Eigen::Vector3d d = nu.cross(std::abs(nu.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).normalized();
+  const Eigen::Vector3d d =
+      nu.cross(std::abs(nu.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).normalized();
   const PlanarSlice slice = m.slice(x, d, tol);
   if (!slice.hit || slice.s_lo > tol || slice.s_hi < -tol) return {};
   const double lambda = slice.s_hi > slice.s_lo ? std::clamp(-slice.s_lo / (slice.s_hi - slice.s_lo), 0.0, 1.0) : 0.0;
@@ -268,7 +270,7 @@ ToiResult toi(const DirectionalInput& input, WarmStart* warm) {
   const double max_distance = input.max_distance;
   ToiResult r;
   auto fromInterval = [&](const LineInterval& line) {
-    if (!line.hit || line.hi->t < -tol) return;                      // never
+    if (!line.hit || line.hi->t < -tol) return;  // never
     if (line.lo->t <= tol) {
       r.status = ToiStatus::kInContact;
       r.toi = 0.0;

@@ -23,8 +23,8 @@
 namespace mddual::detail {
 
 struct RayQuery {
-  Eigen::Vector3d c_A = Eigen::Vector3d::Zero();  ///< centre, inside M
-  Eigen::Vector3d w_A = Eigen::Vector3d::UnitX(); ///< unit ray direction
+  Eigen::Vector3d c_A = Eigen::Vector3d::Zero();   ///< centre, inside M
+  Eigen::Vector3d w_A = Eigen::Vector3d::UnitX();  ///< unit ray direction
   FaceOfM warm;  ///< start face; kNone: cold start with the SEARCH-FV and SEARCH-VF phases
   /// Early exits: stop at the first face with phi > phi_stop (the exit is
   /// closer than 1/phi_stop), or with offset h < h_stop (a separating plane).
@@ -34,12 +34,12 @@ struct RayQuery {
 
 struct RayExit {
   FaceOfM face;
-  Eigen::Vector3d n_A = Eigen::Vector3d::Zero();  ///< unit outward normal of the face
-  double h = 0.0;                                 ///< offset: n . x <= h on M
-  double phi = 0.0;                               ///< objective (1 / distance from c to the exit)
-  int va = -1;  ///< a vertex of A supporting n
-  int vb = -1;  ///< a vertex of B supporting -n
-  bool stopped = false;  ///< an early-exit threshold fired on this face
+  Eigen::Vector3d n_A = Eigen::Vector3d::Zero();           ///< unit outward normal of the face
+  double h = 0.0;                                          ///< offset: n . x <= h on M
+  double phi = 0.0;                                        ///< objective (1 / distance from c to the exit)
+  int va = -1;                                             ///< a vertex of A supporting n
+  int vb = -1;                                             ///< a vertex of B supporting -n
+  bool stopped = false;                                    ///< an early-exit threshold fired on this face
   double min_h = std::numeric_limits<double>::infinity();  ///< smallest offset h among the faces evaluated
 };
 

@@ -14,8 +14,8 @@ namespace mddual {
 
 /// M = A - B in the world frame, with the pair of vertices behind each vertex.
 struct MinkowskiDifference {
-  ConvexPolytope polytope;                 ///< M, frame W
-  std::vector<std::pair<int, int>> source; ///< vertex k of M = a(source[k].first) - b(source[k].second)
+  ConvexPolytope polytope;                  ///< M, frame W
+  std::vector<std::pair<int, int>> source;  ///< vertex k of M = a(source[k].first) - b(source[k].second)
   /// Builds M from posed A and B (InvalidInputError on bad input).
   static MinkowskiDifference build(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
                                    const Eigen::Isometry3d& X_WB);

@@ -139,8 +139,7 @@ class ConvexPolytope {
     return IndexRange(ids.data() + begin[i], ids.data() + begin[i + 1]);
   }
   void buildHierarchy();
-  int climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start,
-                 SupportStats* stats) const;
+  int climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start, SupportStats* stats) const;
 
   bool flat_ = false;
   std::vector<Eigen::Vector3d> vertices_P_;

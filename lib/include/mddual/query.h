@@ -51,9 +51,9 @@ enum class ToiStatus : std::uint8_t {
 
 /// Outcome of an intersection test.
 enum class IntersectStatus : std::uint8_t {
-  kSeparated,   ///< disjoint; separating_normal_W holds a proof
-  kTouching,    ///< boundaries meet, interiors disjoint (within tolerance)
-  kPenetrating, ///< interiors overlap
+  kSeparated,    ///< disjoint; separating_normal_W holds a proof
+  kTouching,     ///< boundaries meet, interiors disjoint (within tolerance)
+  kPenetrating,  ///< interiors overlap
 };
 
 const char* toString(ContactStatus status);
@@ -116,11 +116,11 @@ struct FaceOfM {
 /// per pair of polytopes and per thread; reusing it for another pair is safe
 /// (indices are range-checked) but useless.
 struct WarmStart {
-  int support_a = -1;     ///< last support vertex of A used by the centre phase
-  int support_b = -1;     ///< last support vertex of B used by the centre phase
-  FaceOfM forward;        ///< optimal face for the entry point t_lo
-  FaceOfM backward;       ///< optimal face for the exit point t_hi
-  FaceOfM separating;     ///< last separating face found by intersect()
+  int support_a = -1;  ///< last support vertex of A used by the centre phase
+  int support_b = -1;  ///< last support vertex of B used by the centre phase
+  FaceOfM forward;     ///< optimal face for the entry point t_lo
+  FaceOfM backward;    ///< optimal face for the exit point t_hi
+  FaceOfM separating;  ///< last separating face found by intersect()
 };
 
 // ---- Queries ------------------------------------------------------------------

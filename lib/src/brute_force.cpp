@@ -115,39 +115,6 @@ Eigen::Vector3d decompose(const MinkowskiDifference& md, const std::vector<Eigen
   return best;
 }
 
-/// Everything the three queries need, computed once.
-struct BruteLineAnswer {
-  ClippedLine line;
-  bool penetrable = false;  // M has an interior the line can cross
-  double tol = 0.0;         // touching tolerance of the pair
-  Contact lo;
-  Contact hi;
-};
-
-BruteLineAnswer solveLine(const DirectionalInput& input, const char* query) {
-  const detail::PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, query);
-  const Eigen::Vector3d u_W = detail::unitDirection(input.s_W, query);
-  const MinkowskiDifference md = MinkowskiDifference::build(*input.a, input.X_WA, *input.b, input.X_WB);
-  const std::vector<Constraint> constraints = constraintsOf(md.polytope);
-  BruteLineAnswer out;
-  out.tol = pair.touchTolerance();
-  out.line = clip(constraints, u_W, out.tol);
-  out.penetrable = !md.polytope.isFlat() && !out.line.grazing;
-  if (!out.line.hit) return out;
-  std::vector<Eigen::Vector3d> a_W;
-  for (const Eigen::Vector3d& v : input.a->vertices()) a_W.push_back(input.X_WA * v);
-  auto contact = [&](double t, const Constraint& c) {
-    Contact k;
-    k.t = t;
-    k.normal_W = c.n;
-    k.point_W = decompose(md, a_W, c, t * u_W);
-    return k;
-  };
-  out.lo = contact(out.line.t_lo, *out.line.lo);
-  out.hi = contact(out.line.t_hi, *out.line.hi);
-  return out;
-}
-
 }  // namespace
 
 MinkowskiDifference MinkowskiDifference::build(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA,
@@ -170,22 +137,55 @@ MinkowskiDifference MinkowskiDifference::build(const ConvexPolytope& a, const Ei
   return md;
 }
 
-MddResult bruteForceMdd(const DirectionalInput& input) {
-  const BruteLineAnswer ans = solveLine(input, "mdd (brute force)");
-  const double tol = ans.tol;
+struct BruteForce::Line {
+  ClippedLine line;
+  bool penetrable = false;  // M has an interior the line can cross
+  Contact lo;
+  Contact hi;
+};
+
+BruteForce::BruteForce(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
+                       const Eigen::Isometry3d& X_WB) {
+  const detail::PairGeometry pair(a, X_WA, b, X_WB, "brute force");
+  tol_ = pair.touchTolerance();
+  md_ = MinkowskiDifference::build(*a, X_WA, *b, X_WB);
+  for (const Eigen::Vector3d& v : a->vertices()) a_W_.push_back(X_WA * v);
+}
+
+BruteForce::Line BruteForce::solve(const Eigen::Vector3d& s_W, const char* query) const {
+  const Eigen::Vector3d u_W = detail::unitDirection(s_W, query);
+  const std::vector<Constraint> constraints = constraintsOf(md_.polytope);
+  Line out;
+  out.line = clip(constraints, u_W, tol_);
+  out.penetrable = !md_.polytope.isFlat() && !out.line.grazing;
+  if (!out.line.hit) return out;
+  auto contact = [&](double t, const Constraint& c) {
+    Contact k;
+    k.t = t;
+    k.normal_W = c.n;
+    k.point_W = decompose(md_, a_W_, c, t * u_W);
+    return k;
+  };
+  out.lo = contact(out.line.t_lo, *out.line.lo);
+  out.hi = contact(out.line.t_hi, *out.line.hi);
+  return out;
+}
+
+MddResult BruteForce::mdd(const Eigen::Vector3d& s_W) const {
+  const Line ans = solve(s_W, "mdd (brute force)");
   MddResult r;
   if (!ans.line.hit) return r;
   r.t_lo = ans.line.t_lo;
   r.t_hi = ans.line.t_hi;
-  if (r.t_lo > tol) {
+  if (r.t_lo > tol_) {
     r.status = ContactStatus::kSeparated;
     r.distance = r.t_lo;
     r.contact = ans.lo;
-  } else if (r.t_hi < -tol) {
+  } else if (r.t_hi < -tol_) {
     r.status = ContactStatus::kSeparated;
     r.distance = -r.t_hi;
     r.contact = ans.hi;
-  } else if (!ans.penetrable || r.t_lo >= -tol || r.t_hi <= tol) {
+  } else if (!ans.penetrable || r.t_lo >= -tol_ || r.t_hi <= tol_) {
     r.status = ContactStatus::kTouching;
     r.distance = 0.0;
     r.contact = std::abs(r.t_lo) <= std::abs(r.t_hi) ? ans.lo : ans.hi;
@@ -198,16 +198,15 @@ MddResult bruteForceMdd(const DirectionalInput& input) {
   return r;
 }
 
-ToiResult bruteForceToi(const DirectionalInput& input) {
-  if (std::isnan(input.max_distance)) throw InvalidInputError("toi (brute force): max_distance is NaN");
-  const BruteLineAnswer ans = solveLine(input, "toi (brute force)");
-  const double tol = ans.tol;
+ToiResult BruteForce::toi(const Eigen::Vector3d& s_W, double max_distance) const {
+  if (std::isnan(max_distance)) throw InvalidInputError("toi (brute force): max_distance is NaN");
+  const Line ans = solve(s_W, "toi (brute force)");
   ToiResult r;
-  if (!ans.line.hit || ans.line.t_hi < -tol) return r;
-  if (ans.line.t_lo <= tol) {
+  if (!ans.line.hit || ans.line.t_hi < -tol_) return r;
+  if (ans.line.t_lo <= tol_) {
     r.status = ToiStatus::kInContact;
     r.toi = 0.0;
-  } else if (ans.line.t_lo <= input.max_distance) {
+  } else if (ans.line.t_lo <= max_distance) {
     r.status = ToiStatus::kHit;
     r.toi = ans.line.t_lo;
     r.contact = ans.lo;
@@ -215,28 +214,37 @@ ToiResult bruteForceToi(const DirectionalInput& input) {
   return r;
 }
 
-IntersectResult bruteForceIntersect(const IntersectInput& input) {
-  const detail::PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, "intersect (brute force)");
-  const MinkowskiDifference md = MinkowskiDifference::build(*input.a, input.X_WA, *input.b, input.X_WB);
+IntersectResult BruteForce::intersect() const {
   // Signed distance of the origin to M's boundary planes: max over planes of -h.
   double outside = -kInf;
   Eigen::Vector3d normal = Eigen::Vector3d::Constant(kNaN);
-  for (const Constraint& c : constraintsOf(md.polytope)) {
+  for (const Constraint& c : constraintsOf(md_.polytope)) {
     if (-c.h > outside) {
       outside = -c.h;
       normal = c.n;
     }
   }
-  const double tol = pair.touchTolerance();
   IntersectResult r;
-  if (outside > tol) {
+  if (outside > tol_) {
     r.status = IntersectStatus::kSeparated;
     r.separating_normal_W = normal;
   } else {
     r.intersecting = true;
-    r.status = outside >= -tol || md.polytope.isFlat() ? IntersectStatus::kTouching : IntersectStatus::kPenetrating;
+    r.status = outside >= -tol_ || md_.polytope.isFlat() ? IntersectStatus::kTouching : IntersectStatus::kPenetrating;
   }
   return r;
+}
+
+MddResult bruteForceMdd(const DirectionalInput& in) {
+  return BruteForce(in.a, in.X_WA, in.b, in.X_WB).mdd(in.s_W);
+}
+
+ToiResult bruteForceToi(const DirectionalInput& in) {
+  return BruteForce(in.a, in.X_WA, in.b, in.X_WB).toi(in.s_W, in.max_distance);
+}
+
+IntersectResult bruteForceIntersect(const IntersectInput& in) {
+  return BruteForce(in.a, in.X_WA, in.b, in.X_WB).intersect();
 }
 
 }  // namespace mddual

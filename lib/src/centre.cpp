@@ -8,9 +8,10 @@
 // warm start instead of all of them:
 //
 //   1. v0 = projection of g (centroid(A) - centroid(B), interior to M).
-//   2. Discovery: v1 = support of M' toward the origin, v2 = support on the
-//      other side of the ray from v0 through the origin; the portal v1-v2
-//      straddles that ray.
+//   2. Discovery: v1 = support of M' toward the origin, v2 = support normal
+//      to v0-v1 on the origin's side, repeated until v1 and v2 lie on either
+//      side of the ray from v0 through the origin; the portal v1-v2 then
+//      crosses that ray ahead of v0.
 //   3. Refinement: replace the portal end on the same side as the new support
 //      point in the portal's outward normal, until the origin is inside the
 //      triangle (v0, v1, v2) with a weight >= kCentreMinWeight on v0, or the
@@ -97,15 +98,37 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
   const Eigen::Vector2d r = -v0.normalized();
   PlanarSupport s1 = support(r);
   if (certificate(s1)) return out;
-  const double side1 = cross2(r, s1.v - v0);
-  if (side1 == 0.0) {
+  // Side of the ray a point is on: +1, -1, or 0 when on it (sine of the
+  // angle at v0 within kParallelSin).
+  auto side = [&](const Eigen::Vector2d& v) {
+    const double c = cross2(r, v - v0);
+    return std::abs(c) <= defaults::kParallelSin * (v - v0).norm() ? 0 : (c > 0.0 ? 1 : -1);
+  };
+  const int side1 = side(s1.v);
+  if (side1 == 0) {
     // v1 lies on the ray beyond the origin: the origin is on segment v0-v1.
     const double lambda = v0.norm() / r.dot(s1.v - v0);
     return finish((1.0 - lambda) * g + lambda * s1.m.p_A);
   }
-  const Eigen::Vector2d perp(-r.y(), r.x());
-  PlanarSupport s2 = support(side1 > 0.0 ? Eigen::Vector2d(-perp) : perp);
-  if (certificate(s2)) return out;
+  // v2: support perpendicular to v0-v1 on the origin's side. Everything on
+  // that side of the line v0-v1 meets the ray ahead of v0, so once v1 and v2
+  // lie on opposite sides of the ray the portal v1-v2 crosses it ahead of v0.
+  // While v2 lands on v1's side it becomes the new v1 (closer to the ray).
+  PlanarSupport s2;
+  for (int it = 0;; ++it) {
+    if (it == defaults::kMaxCentreIterations) {
+      throw NumericalError("centre of duality: portal discovery did not converge in " +
+                           std::to_string(defaults::kMaxCentreIterations) + " steps");
+    }
+    const Eigen::Vector2d edge = s1.v - v0;
+    Eigen::Vector2d normal(-edge.y(), edge.x());
+    if (normal.dot(-v0) < 0.0) normal = -normal;
+    s2 = support(normal);
+    if (certificate(s2)) return out;
+    const int side2 = side(s2.v);
+    if (side2 != side1) break;
+    s1 = s2;
+  }
 
   // 3. Refinement.
   for (int it = 0; it < defaults::kMaxCentreIterations; ++it) {
@@ -128,7 +151,7 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
       out.vb = s3.m.vb;
       return out;
     }
-    if ((cross2(r, s3.v - v0) > 0.0) == (side1 > 0.0)) {
+    if (side(s3.v) == side1) {
       s1 = s3;
     } else {
       s2 = s3;

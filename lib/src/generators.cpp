@@ -72,8 +72,8 @@ Points roundedCubeRandom(int vertices, Rng& rng) {
 
 Points solidOfRevolution(int vertices) {
   // Profile r(z) concave in z (a convex solid), slightly egg-shaped.
-  const int rings = 10;
-  const int per_ring = vertices / rings;
+  const int rings = 9;
+  const int per_ring = (vertices - 2) / rings;
   Points p;
   for (int j = 0; j < rings; ++j) {
     const double z = -4.5 + 9.0 * (j + 0.5) / rings;

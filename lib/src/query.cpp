@@ -67,6 +67,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// The line's interval in M with a contact at each end that was computed.
 struct LineInterval {
   bool hit = false;
+  /// False when the line only meets M's boundary (grazing, or a flat M): the
+  /// origin on the interval is then touching, never penetrating.
+  bool crosses_interior = true;
+  /// Planar paths: a unit normal (world) of the supporting plane holding the
+  /// whole interval, valid at every point of it.
+  Eigen::Vector3d plane_normal_W = Eigen::Vector3d::Zero();
   std::optional<Contact> lo;  ///< contact at t_lo (entry)
   std::optional<Contact> hi;  ///< contact at t_hi (exit)
 };
@@ -108,21 +114,23 @@ std::vector<Eigen::Vector3d> pointsInA(const PairGeometry& pair, bool of_b, cons
   return out;
 }
 
-/// Contacts at both ends of a planar slice {s d} (s along d = +-u).
-LineInterval intervalFromSlice(const PairGeometry& pair, const PlanarSlice& slice, double scale_t,
-                               const Eigen::Vector3d& normal_lo_A, const Eigen::Vector3d& normal_hi_A,
-                               bool use_slice_normals) {
+/// Contacts at both ends of a planar slice {s u} of M, and the plane's normal.
+/// The contact normals are `normal_A` when given, else the slice's edge normals.
+LineInterval intervalFromSlice(const PairGeometry& pair, const PlanarSlice& slice, const Eigen::Vector3d& plane_A,
+                               const Eigen::Vector3d* normal_A) {
   LineInterval out;
   out.hit = slice.hit;
+  out.crosses_interior = false;
+  out.plane_normal_W = pair.vectorToWorld(plane_A);
   if (!slice.hit) return out;
   Contact lo;
-  lo.t = slice.s_lo * scale_t;
+  lo.t = slice.s_lo;
   lo.point_W = pair.pointToWorld(slice.a_lo);
-  lo.normal_W = pair.vectorToWorld(use_slice_normals ? slice.normal_lo : normal_lo_A);
+  lo.normal_W = pair.vectorToWorld(normal_A != nullptr ? *normal_A : slice.normal_lo);
   Contact hi;
-  hi.t = slice.s_hi * scale_t;
+  hi.t = slice.s_hi;
   hi.point_W = pair.pointToWorld(slice.a_hi);
-  hi.normal_W = pair.vectorToWorld(use_slice_normals ? slice.normal_hi : normal_hi_A);
+  hi.normal_W = pair.vectorToWorld(normal_A != nullptr ? *normal_A : slice.normal_hi);
   out.lo = lo;
   out.hi = hi;
   return out;
@@ -138,8 +146,8 @@ LineInterval grazingInterval(const PairGeometry& pair, const Centre& centre, con
   pair.b().supportTies(-pair.aToB(centre.w_A), centre.vb, pair.tieTolerance(), &ties_b);
   const PlanarDifference face(pointsInA(pair, false, &ties_a), pointsInA(pair, true, &ties_b), centre.w_A);
   stats->planar = true;
-  return intervalFromSlice(pair, face.slice(Eigen::Vector3d::Zero(), u_A, pair.touchTolerance()), 1.0, centre.w_A,
-                           centre.w_A, false);
+  return intervalFromSlice(pair, face.slice(Eigen::Vector3d::Zero(), u_A, pair.touchTolerance()), centre.w_A,
+                           &centre.w_A);
 }
 
 /// A and B are parallel flat polygons: M is a polygon in the plane nu . x = k.
@@ -152,7 +160,7 @@ LineInterval flatInterval(const PairGeometry& pair, const Eigen::Vector3d& u_A, 
   const double along = nu.dot(u_A);
   if (std::abs(along) <= defaults::kParallelSin) {
     if (std::abs(k) > tol) return {};
-    return intervalFromSlice(pair, m.slice(Eigen::Vector3d::Zero(), u_A, tol), 1.0, nu, nu, true);
+    return intervalFromSlice(pair, m.slice(Eigen::Vector3d::Zero(), u_A, tol), nu, nullptr);
   }
   // The line crosses M's plane once, at t*: a contact iff that point is in M.
   const double t_star = k / along;
@@ -167,6 +175,7 @@ LineInterval flatInterval(const PairGeometry& pair, const Eigen::Vector3d& u_A, 
   c.point_W = pair.pointToWorld(slice.a_lo + lambda * (slice.a_hi - slice.a_lo));
   LineInterval out;
   out.hit = true;
+  out.crosses_interior = false;
   out.lo = c;
   out.hi = c;
   out.lo->normal_W = pair.vectorToWorld(along > 0.0 ? Eigen::Vector3d(-nu) : nu);  // entry: n . u <= 0
@@ -187,10 +196,22 @@ void classify(const LineInterval& line, double tol, MddResult* r) {
     r->status = ContactStatus::kSeparated;
     r->distance = -r->t_hi;
     r->contact = *line.hi;
-  } else if (r->t_lo >= -tol || r->t_hi <= tol) {
+  } else if (!line.crosses_interior || r->t_lo >= -tol || r->t_hi <= tol) {
     r->status = ContactStatus::kTouching;
     r->distance = 0.0;
-    r->contact = std::abs(r->t_lo) <= std::abs(r->t_hi) ? *line.lo : *line.hi;
+    if (line.lo && std::abs(r->t_lo) <= tol) {
+      r->contact = *line.lo;
+    } else if (line.hi && std::abs(r->t_hi) <= tol) {
+      r->contact = *line.hi;
+    } else {
+      // The origin inside a planar interval: interpolate the contact at t = 0.
+      const double lambda = -r->t_lo / (r->t_hi - r->t_lo);
+      r->contact = *line.lo;
+      r->contact.t = 0.0;
+      r->contact.point_W = (1.0 - lambda) * line.lo->point_W + lambda * line.hi->point_W;
+      r->contact.normal_W = line.plane_normal_W;
+      r->contact.feature_a = r->contact.feature_b = Feature{};
+    }
   } else {
     r->status = ContactStatus::kPenetrating;
     const bool backward = -r->t_lo < r->t_hi;

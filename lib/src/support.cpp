@@ -102,6 +102,24 @@ int ConvexPolytope::climbLevel(const HierarchyLevel& level, const Eigen::Vector3
   return best;
 }
 
+int ConvexPolytope::descendLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local,
+                                 SupportStats* stats) const {
+  // DK step: the maximiser on this level is the coarser level's answer or one
+  // of its neighbours that the coarser level dropped; a climb from a better
+  // such neighbour settles ties and degenerate cases.
+  int best = local;
+  double best_value = d_P.dot(vertices_P_[level.vertex_ids[local]]);
+  for (int i = level.removed_begin[local]; i < level.removed_begin[local + 1]; ++i) {
+    const double value = d_P.dot(vertices_P_[level.vertex_ids[level.removed[i]]]);
+    if (value > best_value) {
+      best_value = value;
+      best = level.removed[i];
+    }
+  }
+  if (stats != nullptr) stats->vertices_visited += level.removed_begin[local + 1] - level.removed_begin[local];
+  return best == local ? local : climbLevel(level, d_P, best, stats);
+}
+
 int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats) const {
   if (levels_.empty()) return supportVertexHillClimb(d_P, 0, stats);
   // Top level: exhaustive scan of a constant number of vertices.
@@ -116,11 +134,24 @@ int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportSt
     }
   }
   if (stats != nullptr) stats->vertices_visited += static_cast<int>(top.vertex_ids.size());
-  // Descend: climb each finer level from the coarser level's answer.
+  // Descend level by level, checking only the vertices each level dropped.
   for (int k = static_cast<int>(levels_.size()) - 1; k >= 1; --k) {
-    local = climbLevel(levels_[k - 1], d_P, levels_[k].below[local], stats);
+    local = descendLevel(levels_[k - 1], d_P, levels_[k].below[local], stats);
   }
-  return supportVertexHillClimb(d_P, levels_[0].below[local], stats);
+  // The full polytope: its dropped neighbours, then a climb that certifies
+  // the answer (a local maximum of a linear function on a polytope).
+  int v = levels_[0].below[local];
+  double value = d_P.dot(vertices_P_[v]);
+  int start = v;
+  for (int i = removed_begin_[v]; i < removed_begin_[v + 1]; ++i) {
+    const double w_value = d_P.dot(vertices_P_[removed_[i]]);
+    if (w_value > value) {
+      value = w_value;
+      start = removed_[i];
+    }
+  }
+  if (stats != nullptr) stats->vertices_visited += removed_begin_[v + 1] - removed_begin_[v];
+  return supportVertexHillClimb(d_P, start, stats);
 }
 
 int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportStats* stats) const {
@@ -146,6 +177,8 @@ void ConvexPolytope::supportTies(const Eigen::Vector3d& d_P, int v, double tol, 
 
 void ConvexPolytope::buildHierarchy() {
   levels_.clear();
+  removed_begin_.clear();
+  removed_.clear();
   if (numVertices() <= defaults::kHierarchyMinVertices) return;
 
   // Current level: original ids and adjacency lists in local indices.
@@ -156,11 +189,16 @@ void ConvexPolytope::buildHierarchy() {
     for (int w : vertexNeighbors(v)) adjacency[v].push_back(w);
   }
   while (static_cast<int>(ids.size()) > defaults::kHierarchyTopSize) {
-    // Independent set of low-degree vertices, greedily in index order.
+    // Independent set of low-degree vertices, greedily from the lowest
+    // degree up (removes more vertices per level than index order).
     const int n = static_cast<int>(ids.size());
+    std::vector<int> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int x, int y) { return adjacency[x].size() < adjacency[y].size(); });
     std::vector<char> removed(n, 0);
     std::vector<char> blocked(n, 0);
-    for (int i = 0; i < n; ++i) {
+    for (int i : order) {
       if (blocked[i] || static_cast<int>(adjacency[i].size()) > defaults::kHierarchyMaxRemovedDegree) continue;
       removed[i] = 1;
       for (int w : adjacency[i]) blocked[w] = 1;
@@ -169,6 +207,17 @@ void ConvexPolytope::buildHierarchy() {
     for (int i = 0; i < n; ++i)
       if (!removed[i]) survivors.push_back(i);
     if (static_cast<int>(survivors.size()) == n) break;  // nothing removable
+    // The current level's neighbours that the next level drops (the only
+    // candidates a descent needs to check on this level).
+    std::vector<int>& dropped_begin = levels_.empty() ? removed_begin_ : levels_.back().removed_begin;
+    std::vector<int>& dropped = levels_.empty() ? removed_ : levels_.back().removed;
+    dropped_begin.assign(1, 0);
+    dropped.clear();
+    for (int i = 0; i < n; ++i) {
+      for (int w : adjacency[i])
+        if (removed[w]) dropped.push_back(levels_.empty() ? ids[w] : w);
+      dropped_begin.push_back(static_cast<int>(dropped.size()));
+    }
 
     HierarchyLevel level;
     std::vector<std::vector<int>> next_adjacency;

@@ -21,12 +21,37 @@ struct MinkowskiDifference {
                                    const Eigen::Isometry3d& X_WB);
 };
 
-/// Same contract as mdd(); SearchStats stay zero. Both ends t_lo and t_hi are
-/// always filled when the line meets M.
+/// The reference for one posed pair: builds M once, then answers any number
+/// of directional queries and the intersection test on it.
+class BruteForce {
+ public:
+  /// Validates like the fast queries (InvalidInputError on bad input).
+  BruteForce(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
+             const Eigen::Isometry3d& X_WB);
+
+  /// Same contract as mdd(); SearchStats stay zero, and both ends t_lo and
+  /// t_hi are always filled when the line meets M.
+  MddResult mdd(const Eigen::Vector3d& s_W) const;
+  /// Same contract as toi().
+  ToiResult toi(const Eigen::Vector3d& s_W, double max_distance = std::numeric_limits<double>::infinity()) const;
+  /// Same contract as intersect().
+  IntersectResult intersect() const;
+
+  const MinkowskiDifference& minkowskiDifference() const { return md_; }
+  double touchTolerance() const { return tol_; }
+
+ private:
+  struct Line;
+  Line solve(const Eigen::Vector3d& s_W, const char* query) const;
+
+  std::vector<Eigen::Vector3d> a_W_;
+  MinkowskiDifference md_;
+  double tol_ = 0.0;
+};
+
+/// One-shot wrappers: build the reference for input's pair and answer.
 MddResult bruteForceMdd(const DirectionalInput& input);
-/// Same contract as toi().
 ToiResult bruteForceToi(const DirectionalInput& input);
-/// Same contract as intersect().
 IntersectResult bruteForceIntersect(const IntersectInput& input);
 
 }  // namespace mddual

@@ -28,7 +28,8 @@ Points ellipsoid(int vertices);
 /// exponent 6 and half-width 2.8), all of them hull vertices.
 Points roundedCubeRandom(int vertices, Rng& rng);
 /// P6: solid of revolution of the convex profile r(z) = 2.5 * sqrt(1 - (z/4.5)^2)
-/// * (1 - 0.15 z / 4.5): rings of points, `vertices` in all (plus the two poles).
+/// * (1 - 0.15 z / 4.5): nine rings of (vertices - 2) / 9 points and the two
+/// poles (200 vertices for the default).
 Points solidOfRevolution(int vertices = 200);
 
 /// The paper's polytopes by name "P1".."P6" (P5 uses a fixed seed).

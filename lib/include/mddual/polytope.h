@@ -133,6 +133,8 @@ class ConvexPolytope {
     std::vector<int> below;            ///< local index of each vertex in the level below
     std::vector<int> adjacency_begin;  ///< CSR offsets into adjacency
     std::vector<int> adjacency;        ///< local neighbour indices
+    std::vector<int> removed_begin;    ///< CSR offsets into removed
+    std::vector<int> removed;          ///< neighbours that the next coarser level dropped
   };
 
   static IndexRange range(const std::vector<int>& begin, const std::vector<int>& ids, int i) {
@@ -140,6 +142,7 @@ class ConvexPolytope {
   }
   void buildHierarchy();
   int climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start, SupportStats* stats) const;
+  int descendLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local, SupportStats* stats) const;
 
   bool flat_ = false;
   std::vector<Eigen::Vector3d> vertices_P_;
@@ -156,6 +159,8 @@ class ConvexPolytope {
   Eigen::Vector3d centroid_P_ = Eigen::Vector3d::Zero();
   double radius_ = 0.0;
   std::vector<HierarchyLevel> levels_;  ///< levels_[0] is the first coarsened level
+  std::vector<int> removed_begin_;      ///< CSR: neighbours of each vertex that levels_[0] dropped
+  std::vector<int> removed_;
 };
 
 }  // namespace mddual

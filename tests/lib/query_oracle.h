@@ -1,0 +1,228 @@
+// Test oracle: runs mdd(), toi() and intersect() against the brute-force
+// reference on one posed pair and many directions, checks the contact point
+// and normal geometrically, and prints any failing query as a JSON line of the
+// CLI's input format (paste it into a test or into `mddual query`).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mddual/brute_force.h"
+#include "mddual/query.h"
+#include "pair.h"
+
+namespace mddual::testing {
+
+/// Counts of what a family's sample contained (for non-degeneracy guards).
+struct Tally {
+  int queries = 0;
+  int separated = 0;
+  int touching = 0;
+  int penetrating = 0;
+  int no_contact = 0;
+  int planar = 0;
+  int intersecting = 0;
+  int scenes = 0;
+  void add(ContactStatus s) {
+    ++queries;
+    if (s == ContactStatus::kSeparated) ++separated;
+    if (s == ContactStatus::kTouching) ++touching;
+    if (s == ContactStatus::kPenetrating) ++penetrating;
+    if (s == ContactStatus::kNoContact) ++no_contact;
+  }
+  double fraction(int n) const { return queries > 0 ? static_cast<double>(n) / queries : 0.0; }
+};
+
+/// Largest violation of the half-spaces bounding polytope P posed at X by the
+/// point p (the face planes, and for a flat polygon also its edge planes):
+/// <= 0 inside, about the distance outside.
+inline double outsideOf(const ConvexPolytope& p, const Eigen::Isometry3d& X, const Eigen::Vector3d& p_W) {
+  const Eigen::Vector3d q = X.inverse() * p_W;
+  double worst = -std::numeric_limits<double>::infinity();
+  for (int f = 0; f < p.numFaces(); ++f) worst = std::max(worst, p.faceNormal(f).dot(q) - p.faceOffset(f));
+  if (p.isFlat()) {
+    for (int e = 0; e < p.numEdges(); ++e) {
+      const Eigen::Vector3d m = p.edge(e).wedge_left_P.normalized();
+      worst = std::max(worst, m.dot(q - p.vertex(p.edge(e).v0)));
+    }
+  }
+  return worst;
+}
+
+class QueryOracle {
+ public:
+  /// rel_tol: agreement required, relative to the pair's length scale.
+  explicit QueryOracle(double rel_tol = 1e-9) : rel_tol_(rel_tol) {}
+
+  /// Checks every direction on the pair; failures are reported through gtest
+  /// with the query printed. Returns the number of failing queries.
+  int check(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+            const Eigen::Isometry3d& X_WB, const std::vector<Eigen::Vector3d>& directions, Tally* tally) {
+    const BruteForce brute(&a, X_WA, &b, X_WB);
+    const detail::PairGeometry pair(&a, X_WA, &b, X_WB, "test");
+    const double scale = pair.scale();
+    const double tol = rel_tol_ * scale;
+    ++tally->scenes;
+    int failures = 0;
+    // Intersection test (direction-free).
+    {
+      IntersectInput in{&a, X_WA, &b, X_WB};
+      const IntersectResult fast = intersect(in);
+      const IntersectResult ref = brute.intersect();
+      if (fast.intersecting) ++tally->intersecting;
+      bool ok = fast.status == ref.status || touchingEither(fast.status, ref.status, brute, tol);
+      if (ok && fast.status == IntersectStatus::kSeparated)
+        ok = separates(a, X_WA, b, X_WB, fast.separating_normal_W, tol);
+      if (!ok) {
+        ++failures;
+        ADD_FAILURE() << "intersect: fast " << toString(fast.status) << " vs brute " << toString(ref.status)
+                      << "\n  query: " << detail::describeQuery(a, X_WA, b, X_WB, Eigen::Vector3d::UnitX());
+      }
+    }
+    for (const Eigen::Vector3d& s : directions) {
+      DirectionalInput in{&a, X_WA, &b, X_WB, s};
+      const MddResult fast = mdd(in);
+      const MddResult ref = brute.mdd(s);
+      const ToiResult fast_toi = toi(in);
+      const ToiResult ref_toi = brute.toi(s);
+      tally->add(ref.status);
+      if (fast.stats.planar) ++tally->planar;
+      std::ostringstream why;
+      if (!agree(fast, ref, tol, &why) || !agreeToi(fast_toi, ref_toi, ref, tol, &why) ||
+          !contactValid(a, X_WA, b, X_WB, s, fast, tol, &why) ||
+          (fast_toi.status == ToiStatus::kHit && !contactValid(a, X_WA, b, X_WB, s, asMdd(fast_toi), tol, &why))) {
+        ++failures;
+        ADD_FAILURE() << why.str() << "\n  fast: " << describe(fast) << "\n  brute: " << describe(ref)
+                      << "\n  toi fast " << toString(fast_toi.status) << " " << fast_toi.toi << ", brute "
+                      << toString(ref_toi.status) << " " << ref_toi.toi
+                      << "\n  query: " << detail::describeQuery(a, X_WA, b, X_WB, s);
+      }
+    }
+    return failures;
+  }
+
+ private:
+  static std::string describe(const MddResult& r) {
+    std::ostringstream o;
+    o.precision(17);
+    o << toString(r.status) << " mdd=" << r.distance << " t=[" << r.t_lo << ", " << r.t_hi << "] n=["
+      << r.contact.normal_W.transpose() << "] p=[" << r.contact.point_W.transpose() << "]";
+    return o.str();
+  }
+
+  static MddResult asMdd(const ToiResult& t) {
+    MddResult r;
+    r.status = ContactStatus::kSeparated;
+    r.distance = t.toi;
+    r.contact = t.contact;
+    return r;
+  }
+
+  /// A status mismatch is acceptable only across the touching boundary.
+  static bool touchingEither(IntersectStatus x, IntersectStatus y, const BruteForce&, double) {
+    return x == IntersectStatus::kTouching || y == IntersectStatus::kTouching;
+  }
+
+  static bool near(double x, double y, double tol) {
+    if (std::isnan(x) || std::isnan(y)) return std::isnan(x) && std::isnan(y);
+    if (std::isinf(x) || std::isinf(y)) return x == y;
+    return std::abs(x - y) <= tol;
+  }
+
+  static bool agree(const MddResult& fast, const MddResult& ref, double tol, std::ostringstream* why) {
+    if (fast.status != ref.status) {
+      const bool contact_f = fast.status != ContactStatus::kNoContact;
+      const bool contact_r = ref.status != ContactStatus::kNoContact;
+      // Across the touching boundary: both distances within tol of zero.
+      const bool across_touch = contact_f && contact_r &&
+                                (fast.status == ContactStatus::kTouching || ref.status == ContactStatus::kTouching) &&
+                                std::abs(fast.distance) <= tol && std::abs(ref.distance) <= tol;
+      // A line grazing M within tolerance: contact of (near) zero length.
+      const bool grazing = contact_f != contact_r &&
+                           (contact_f ? fast.t_hi - fast.t_lo <= tol || fast.stats.planar : ref.t_hi - ref.t_lo <= tol);
+      if (!across_touch && !grazing) {
+        *why << "status differs";
+        return false;
+      }
+      return true;
+    }
+    if (!near(fast.distance, ref.distance, tol)) {
+      *why << "mdd differs by " << fast.distance - ref.distance;
+      return false;
+    }
+    if (!std::isnan(fast.t_lo) && !near(fast.t_lo, ref.t_lo, tol)) {
+      *why << "t_lo differs by " << fast.t_lo - ref.t_lo;
+      return false;
+    }
+    if (!std::isnan(fast.t_hi) && !near(fast.t_hi, ref.t_hi, tol)) {
+      *why << "t_hi differs by " << fast.t_hi - ref.t_hi;
+      return false;
+    }
+    return true;
+  }
+
+  static bool agreeToi(const ToiResult& fast, const ToiResult& ref, const MddResult& ref_mdd, double tol,
+                       std::ostringstream* why) {
+    if (fast.status == ref.status && near(fast.toi, ref.toi, tol)) return true;
+    // Near-touching and grazing placements may fall on either side.
+    const bool touching_side =
+        ref_mdd.status == ContactStatus::kTouching || (!std::isnan(ref_mdd.t_lo) && std::abs(ref_mdd.t_lo) <= tol) ||
+        (!std::isnan(ref_mdd.t_hi) && std::abs(ref_mdd.t_hi) <= tol) || (ref_mdd.t_hi - ref_mdd.t_lo <= tol);
+    const bool small = (fast.toi <= tol || std::isinf(fast.toi)) && (ref.toi <= tol || std::isinf(ref.toi));
+    if (touching_side && (small || near(fast.toi, ref.toi, tol))) return true;
+    *why << "toi differs: fast " << toString(fast.status) << " " << fast.toi << " vs brute " << toString(ref.status)
+         << " " << ref.toi;
+    return false;
+  }
+
+  /// The contact point lies on A and on B translated by t u, and the normal
+  /// separates A from the translated B (every vertex on its side).
+  static bool contactValid(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                           const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s, const MddResult& r, double tol,
+                           std::ostringstream* why) {
+    if (r.status == ContactStatus::kNoContact) return true;
+    const Contact& c = r.contact;
+    Eigen::Isometry3d X_WBt = X_WB;
+    X_WBt.pretranslate(c.t * s.normalized());
+    const Eigen::Vector3d& p = c.point_W;
+    const Eigen::Vector3d& n = c.normal_W;
+    if (!p.allFinite() || !n.allFinite() || std::abs(n.norm() - 1.0) > 1e-9) {
+      *why << "contact point or normal not finite / not unit";
+      return false;
+    }
+    if (outsideOf(a, X_WA, p) > tol || outsideOf(b, X_WBt, p) > tol) {
+      *why << "contact point off the bodies by " << std::max(outsideOf(a, X_WA, p), outsideOf(b, X_WBt, p));
+      return false;
+    }
+    for (const Eigen::Vector3d& v : a.vertices()) {
+      if (n.dot(X_WA * v - p) > tol) {
+        *why << "normal does not support A (by " << n.dot(X_WA * v - p) << ")";
+        return false;
+      }
+    }
+    for (const Eigen::Vector3d& v : b.vertices()) {
+      if (n.dot(X_WBt * v - p) < -tol) {
+        *why << "normal does not support B (by " << -n.dot(X_WBt * v - p) << ")";
+        return false;
+      }
+    }
+    return true;
+  }
+
+  static bool separates(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                        const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& n, double tol) {
+    double max_a = -std::numeric_limits<double>::infinity();
+    double min_b = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector3d& v : a.vertices()) max_a = std::max(max_a, n.dot(X_WA * v));
+    for (const Eigen::Vector3d& v : b.vertices()) min_b = std::min(min_b, n.dot(X_WB * v));
+    return n.allFinite() && max_a <= min_b + tol;
+  }
+
+  double rel_tol_;
+};
+
+}  // namespace mddual::testing

@@ -1,0 +1,154 @@
+// ConvexPolytope construction: topology, merged faces, flat polygons, the
+// Gaussian-arc wedges, and the documented errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mddual/error.h"
+#include "mddual/generators.h"
+#include "mddual/polytope.h"
+
+namespace mddual {
+namespace {
+
+using generators::Points;
+
+/// Checks invariants every polytope must satisfy.
+void expectWellFormed(const ConvexPolytope& p) {
+  const double tol = 1e-9 * (1.0 + p.radius());
+  if (!p.isFlat()) {
+    EXPECT_EQ(p.numVertices() - p.numEdges() + p.numFaces(), 2);
+  }
+  for (int f = 0; f < p.numFaces(); ++f) {
+    EXPECT_NEAR(p.faceNormal(f).norm(), 1.0, 1e-12);
+    for (int v = 0; v < p.numVertices(); ++v) {
+      EXPECT_LE(p.faceNormal(f).dot(p.vertex(v)), p.faceOffset(f) + tol) << "vertex " << v << " outside face " << f;
+    }
+    for (int v : p.faceVertices(f)) EXPECT_NEAR(p.faceNormal(f).dot(p.vertex(v)), p.faceOffset(f), tol);
+  }
+  for (int e = 0; e < p.numEdges(); ++e) {
+    const ConvexPolytope::Edge& edge = p.edge(e);
+    // Each face normal lies on the boundary of the edge's wedge, the other
+    // face normal inside it; the edge direction matches its endpoints.
+    const Eigen::Vector3d nl = p.faceNormal(edge.face_left);
+    const Eigen::Vector3d nr = p.faceNormal(edge.face_right);
+    EXPECT_NEAR(nl.dot(edge.wedge_left_P), 0.0, 1e-12);
+    EXPECT_NEAR(nr.dot(edge.wedge_right_P), 0.0, 1e-12);
+    EXPECT_GE(nl.dot(edge.wedge_right_P), -1e-12);
+    EXPECT_GE(nr.dot(edge.wedge_left_P), -1e-12);
+    EXPECT_NEAR(edge.dir_P.dot((p.vertex(edge.v1) - p.vertex(edge.v0)).normalized()), 1.0, 1e-12);
+  }
+  for (int v = 0; v < p.numVertices(); ++v) {
+    EXPECT_EQ(p.vertexNeighbors(v).size(), p.vertexEdges(v).size());
+    EXPECT_GE(p.vertexNeighbors(v).size(), 2);
+    EXPECT_GE(p.vertexFaces(v).size(), p.isFlat() ? 2 : 3);
+  }
+}
+
+TEST(Polytope, UnitCube) {
+  const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box({0.5, 0.5, 0.5}));
+  EXPECT_EQ(cube.numVertices(), 8);
+  EXPECT_EQ(cube.numEdges(), 12);
+  EXPECT_EQ(cube.numFaces(), 6);  // qhull's triangles merged into squares
+  EXPECT_FALSE(cube.isFlat());
+  EXPECT_NEAR(cube.radius(), std::sqrt(0.75), 1e-15);
+  EXPECT_TRUE(cube.centroid().isZero(1e-15));
+  for (int f = 0; f < 6; ++f) {
+    EXPECT_EQ(cube.faceVertices(f).size(), 4);
+    EXPECT_NEAR(cube.faceOffset(f), 0.5, 1e-15);
+  }
+  expectWellFormed(cube);
+}
+
+TEST(Polytope, LatticeKeepsOnlyCornersAndMergesCoplanarFacets) {
+  // 4 x 4 x 4 lattice points: 56 boundary points, but a cube.
+  const ConvexPolytope p = ConvexPolytope::fromPoints(generators::lattice(3, 3, 3, 1.0));
+  EXPECT_EQ(p.numVertices(), 8);
+  EXPECT_EQ(p.numFaces(), 6);
+  expectWellFormed(p);
+}
+
+TEST(Polytope, RegularPrismHasMergedCaps) {
+  const ConvexPolytope p = ConvexPolytope::fromPoints(generators::prism(7, 1.0, 2.0));
+  EXPECT_EQ(p.numVertices(), 14);
+  EXPECT_EQ(p.numFaces(), 9);  // two heptagons and seven rectangles
+  EXPECT_EQ(p.numEdges(), 21);
+  expectWellFormed(p);
+}
+
+TEST(Polytope, FlatTriangleHasTwoOppositeFaces) {
+  const ConvexPolytope t =
+      ConvexPolytope::fromPoints(generators::triangle({0.0, 0.0, 1.0}, {1.0, 0.0, 1.0}, {0.0, 1.0, 1.0}));
+  ASSERT_TRUE(t.isFlat());
+  EXPECT_EQ(t.numVertices(), 3);
+  EXPECT_EQ(t.numEdges(), 3);
+  EXPECT_EQ(t.numFaces(), 2);
+  EXPECT_NEAR(std::abs(t.faceNormal(0).z()), 1.0, 1e-15);
+  EXPECT_NEAR(t.faceNormal(0).dot(t.faceNormal(1)), -1.0, 1e-15);
+  EXPECT_NEAR(t.faceOffset(0) + t.faceOffset(1), 0.0, 1e-15);
+  // Each edge's wedge is the half-plane of its outward in-plane normal.
+  for (int e = 0; e < 3; ++e) {
+    const ConvexPolytope::Edge& edge = t.edge(e);
+    EXPECT_TRUE(edge.wedge_left_P.isApprox(edge.wedge_right_P, 1e-15));
+    const Eigen::Vector3d mid = 0.5 * (t.vertex(edge.v0) + t.vertex(edge.v1));
+    EXPECT_GT(edge.wedge_left_P.dot(mid - t.centroid()), 0.0);
+  }
+  expectWellFormed(t);
+}
+
+TEST(Polytope, FlatPolygonFromManyCoplanarPoints) {
+  // A planar lattice tilted in space: a flat square with 4 corners.
+  Points points = generators::lattice(4, 4, 0, 0.5);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (Eigen::Vector3d& p : points) p = R * p + Eigen::Vector3d(3, -2, 1);
+  const ConvexPolytope p = ConvexPolytope::fromPoints(points);
+  EXPECT_TRUE(p.isFlat());
+  EXPECT_EQ(p.numVertices(), 4);
+  expectWellFormed(p);
+}
+
+TEST(Polytope, NeedleAndSlabAreSolids) {
+  for (const Points& pts : {generators::box({0.01, 0.01, 1.0}), generators::box({1.0, 1.0, 0.01})}) {
+    const ConvexPolytope p = ConvexPolytope::fromPoints(pts);
+    EXPECT_FALSE(p.isFlat());
+    EXPECT_EQ(p.numFaces(), 6);
+    expectWellFormed(p);
+  }
+}
+
+TEST(Polytope, PaperPolytopesAreWellFormed) {
+  for (const char* name : {"P1", "P2", "P3", "P4", "P5", "P6"}) {
+    SCOPED_TRACE(name);
+    const Points pts = generators::paperPolytope(name);
+    const ConvexPolytope p = ConvexPolytope::fromPoints(pts);
+    EXPECT_EQ(p.numVertices(), static_cast<int>(pts.size()));  // every generated point is a corner
+    expectWellFormed(p);
+  }
+}
+
+TEST(Polytope, ErrorsNameTheProblem) {
+  auto message = [](const Points& pts) -> std::string {
+    try {
+      ConvexPolytope::fromPoints(pts);
+    } catch (const DegenerateGeometryError& e) {
+      return std::string("degenerate: ") + e.what();
+    } catch (const InvalidInputError& e) {
+      return std::string("invalid: ") + e.what();
+    }
+    return "no error";
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(message({}), "invalid: polytope: the point set is empty");
+  EXPECT_NE(message({{0, 0, 0}, {1, 0, 0}, {0, nan, 0}}).find("point 2"), std::string::npos);
+  EXPECT_NE(message({{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}}).find("non-finite"), std::string::npos);
+  EXPECT_NE(message({{0, 0, 0}, {1, 0, 0}}).find("degenerate: polytope: 2 point(s)"), std::string::npos);
+  EXPECT_NE(message({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}).find("collinear"), std::string::npos);
+  EXPECT_NE(message({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}).find("coincide"), std::string::npos);
+  // The base class catches them all.
+  EXPECT_THROW(ConvexPolytope::fromPoints({}), Error);
+}
+
+}  // namespace
+}  // namespace mddual

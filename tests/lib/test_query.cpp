@@ -1,0 +1,301 @@
+// mdd(), toi() and intersect() on hand-computed configurations with exact
+// expected values, plus errors, warm starts and concurrent use.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <thread>
+
+#include "mddual/brute_force.h"
+#include "mddual/error.h"
+#include "mddual/generators.h"
+#include "mddual/query.h"
+
+namespace mddual {
+namespace {
+
+const ConvexPolytope& unitCube() {
+  static const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box({0.5, 0.5, 0.5}));
+  return cube;
+}
+
+Eigen::Isometry3d at(double x, double y, double z) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(x, y, z);
+  return X;
+}
+
+MddResult mddOf(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s) {
+  return mdd(DirectionalInput{&a, X_WA, &b, X_WB, s});
+}
+
+ToiResult toiOf(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s,
+                double max_distance = std::numeric_limits<double>::infinity()) {
+  return toi(DirectionalInput{&a, X_WA, &b, X_WB, s, max_distance});
+}
+
+constexpr double kTol = 1e-12;
+
+TEST(Query, TwoCubesSeparatedAlongX) {
+  // B at x = -3: M = [2, 4] x [-1, 1]^2, the line along +x enters at t = 2.
+  const MddResult r = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {1, 0, 0});
+  EXPECT_EQ(r.status, ContactStatus::kSeparated);
+  EXPECT_NEAR(r.distance, 2.0, kTol);
+  EXPECT_NEAR(r.t_lo, 2.0, kTol);
+  EXPECT_TRUE(r.contact.normal_W.isApprox(Eigen::Vector3d(-1, 0, 0), kTol));
+  EXPECT_NEAR(r.contact.point_W.x(), -0.5, kTol);
+  EXPECT_LE(r.contact.point_W.tail<2>().cwiseAbs().maxCoeff(), 0.5 + kTol);
+
+  const ToiResult t = toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {1, 0, 0});
+  EXPECT_EQ(t.status, ToiStatus::kHit);
+  EXPECT_NEAR(t.toi, 2.0, kTol);
+  EXPECT_TRUE(t.contact.normal_W.isApprox(Eigen::Vector3d(-1, 0, 0), kTol));
+
+  // Non-unit direction: distances are lengths, not multiples of |s|.
+  EXPECT_NEAR(mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {7, 0, 0}).distance, 2.0, kTol);
+  EXPECT_NEAR(toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {0.01, 0, 0}).toi, 2.0, kTol);
+}
+
+TEST(Query, MovingAwayIsSeparatedBackwardAndNeverHits) {
+  const MddResult r = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {-1, 0, 0});
+  EXPECT_EQ(r.status, ContactStatus::kSeparated);
+  EXPECT_NEAR(r.distance, 2.0, kTol);  // B must move back by 2
+  EXPECT_NEAR(r.t_hi, -2.0, kTol);
+  EXPECT_TRUE(r.contact.normal_W.isApprox(Eigen::Vector3d(-1, 0, 0), kTol));
+  const ToiResult t = toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {-1, 0, 0});
+  EXPECT_EQ(t.status, ToiStatus::kNever);
+  EXPECT_TRUE(std::isinf(t.toi));
+}
+
+TEST(Query, LineMissingMIsNoContact) {
+  const MddResult r = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {0, 1, 0});
+  EXPECT_EQ(r.status, ContactStatus::kNoContact);
+  EXPECT_TRUE(std::isnan(r.distance));
+  EXPECT_TRUE(std::isnan(r.contact.normal_W.x()));
+  EXPECT_EQ(r.contact.feature_a.type, FeatureType::kNone);
+  EXPECT_EQ(toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {0, 1, 0}).status, ToiStatus::kNever);
+}
+
+TEST(Query, TouchingCubes) {
+  const MddResult r = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-1, 0.3, 0.1), {1, 0, 0});
+  EXPECT_EQ(r.status, ContactStatus::kTouching);
+  EXPECT_EQ(r.distance, 0.0);
+  EXPECT_NEAR(r.t_lo, 0.0, kTol);
+  EXPECT_NEAR(r.t_hi, 2.0, kTol);
+  const ToiResult t = toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-1, 0.3, 0.1), {1, 0, 0});
+  EXPECT_EQ(t.status, ToiStatus::kInContact);
+  EXPECT_EQ(t.toi, 0.0);
+  const IntersectResult i = intersect(IntersectInput{&unitCube(), at(0, 0, 0), &unitCube(), at(-1, 0.3, 0.1)});
+  EXPECT_EQ(i.status, IntersectStatus::kTouching);
+  EXPECT_TRUE(i.intersecting);
+  // The direction lies in the touching plane: a grazing line, still touching.
+  const MddResult g = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-1, 0.3, 0.1), {0, 1, 1});
+  EXPECT_EQ(g.status, ContactStatus::kTouching);
+  EXPECT_TRUE(g.stats.planar);
+}
+
+TEST(Query, PenetratingCubesTakeTheShorterWayOut) {
+  // B at (-0.5, 0.25, 0): M = [-0.5, 1.5] x [-1.25, 0.75] x [-1, 1].
+  const Eigen::Isometry3d X_WB = at(-0.5, 0.25, 0);
+  const MddResult x = mddOf(unitCube(), at(0, 0, 0), unitCube(), X_WB, {1, 0, 0});
+  EXPECT_EQ(x.status, ContactStatus::kPenetrating);
+  EXPECT_NEAR(x.distance, -0.5, kTol);
+  EXPECT_NEAR(x.t_lo, -0.5, kTol);
+  EXPECT_NEAR(x.t_hi, 1.5, kTol);
+  EXPECT_TRUE(x.contact.normal_W.isApprox(Eigen::Vector3d(-1, 0, 0), kTol));
+
+  const MddResult y = mddOf(unitCube(), at(0, 0, 0), unitCube(), X_WB, {0, 1, 0});
+  EXPECT_EQ(y.status, ContactStatus::kPenetrating);
+  EXPECT_NEAR(y.distance, -0.75, kTol);
+  EXPECT_TRUE(y.contact.normal_W.isApprox(Eigen::Vector3d(0, 1, 0), kTol));
+
+  // Diagonal: x limits t to [-0.5, 1.5] * sqrt2, y to [-1.25, 0.75] * sqrt2.
+  const MddResult d = mddOf(unitCube(), at(0, 0, 0), unitCube(), X_WB, {1, 1, 0});
+  EXPECT_NEAR(d.t_lo, -0.5 * std::sqrt(2.0), kTol);
+  EXPECT_NEAR(d.t_hi, 0.75 * std::sqrt(2.0), kTol);
+  EXPECT_NEAR(d.distance, -0.5 * std::sqrt(2.0), kTol);
+
+  EXPECT_EQ(toiOf(unitCube(), at(0, 0, 0), unitCube(), X_WB, {1, 0, 0}).status, ToiStatus::kInContact);
+  EXPECT_EQ(intersect(IntersectInput{&unitCube(), at(0, 0, 0), &unitCube(), X_WB}).status,
+            IntersectStatus::kPenetrating);
+}
+
+TEST(Query, TiltedTriangleVertexOnCubeFace) {
+  // The triangle's lowest vertex (0, 0, 1) falls onto the top face z = 0.5.
+  const ConvexPolytope tri = ConvexPolytope::fromPoints({{0, 0, 1}, {0, 1, 2}, {1, 0, 2}});
+  const MddResult r = mddOf(unitCube(), at(0, 0, 0), tri, at(0, 0, 0), {0, 0, -1});
+  EXPECT_EQ(r.status, ContactStatus::kSeparated);
+  EXPECT_NEAR(r.distance, 0.5, kTol);
+  EXPECT_TRUE(r.contact.point_W.isApprox(Eigen::Vector3d(0, 0, 0.5), kTol));
+  EXPECT_TRUE(r.contact.normal_W.isApprox(Eigen::Vector3d(0, 0, 1), kTol));
+  EXPECT_EQ(r.contact.feature_a.type, FeatureType::kFace);
+  EXPECT_EQ(r.contact.feature_b.type, FeatureType::kVertex);
+  EXPECT_TRUE(tri.vertex(r.contact.feature_b.index).isApprox(Eigen::Vector3d(0, 0, 1)));
+  // And the cube moving up onto the triangle: the roles swap (vertex-face).
+  const MddResult s = mddOf(tri, at(0, 0, 0), unitCube(), at(0, 0, 0), {0, 0, 1});
+  EXPECT_NEAR(s.distance, 0.5, kTol);
+  EXPECT_EQ(s.contact.feature_a.type, FeatureType::kVertex);
+  EXPECT_EQ(s.contact.feature_b.type, FeatureType::kFace);
+}
+
+TEST(Query, EdgeOnEdge) {
+  // A: the cube turned 45 degrees about y, top edge along y at z = sqrt(2)/2.
+  // B: a wedge whose lowest edge runs along x at z = 1.
+  Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
+  X_WA.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const ConvexPolytope wedge = ConvexPolytope::fromPoints({{-1, 0, 1}, {1, 0, 1}, {0, -1, 2}, {0, 1, 2}});
+  const MddResult r = mddOf(unitCube(), X_WA, wedge, at(0, 0, 0), {0, 0, -1});
+  EXPECT_EQ(r.status, ContactStatus::kSeparated);
+  EXPECT_NEAR(r.distance, 1.0 - std::sqrt(0.5), kTol);
+  EXPECT_TRUE(r.contact.point_W.isApprox(Eigen::Vector3d(0, 0, std::sqrt(0.5)), kTol));
+  EXPECT_TRUE(r.contact.normal_W.isApprox(Eigen::Vector3d(0, 0, 1), kTol));
+  EXPECT_EQ(r.contact.feature_a.type, FeatureType::kEdge);
+  EXPECT_EQ(r.contact.feature_b.type, FeatureType::kEdge);
+}
+
+TEST(Query, CoplanarAndParallelTriangles) {
+  const ConvexPolytope tri = ConvexPolytope::fromPoints({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  // Same plane, B two units along x: the line along -x meets M in [1, 3].
+  const MddResult in_plane = mddOf(tri, at(0, 0, 0), tri, at(2, 0, 0), {-1, 0, 0});
+  EXPECT_EQ(in_plane.status, ContactStatus::kSeparated);
+  EXPECT_NEAR(in_plane.distance, 1.0, kTol);
+  EXPECT_TRUE(in_plane.contact.point_W.isApprox(Eigen::Vector3d(1, 0, 0), kTol));
+  EXPECT_TRUE(in_plane.stats.planar);
+  EXPECT_NEAR(toiOf(tri, at(0, 0, 0), tri, at(2, 0, 0), {-1, 0, 0}).toi, 1.0, kTol);
+  // Overlapping in one plane: touching (flat sets have no interior).
+  EXPECT_EQ(mddOf(tri, at(0, 0, 0), tri, at(0.2, 0.2, 0), {1, 0, 0}).status, ContactStatus::kTouching);
+  EXPECT_EQ(intersect(IntersectInput{&tri, at(0, 0, 0), &tri, at(0.2, 0.2, 0)}).status, IntersectStatus::kTouching);
+  // Parallel planes one unit apart, footprints overlapping: falls by 1.
+  const MddResult fall = mddOf(tri, at(0, 0, 0), tri, at(0.1, 0.1, 1), {0, 0, -1});
+  EXPECT_EQ(fall.status, ContactStatus::kSeparated);
+  EXPECT_NEAR(fall.distance, 1.0, kTol);
+  EXPECT_TRUE(fall.contact.normal_W.isApprox(Eigen::Vector3d(0, 0, 1), kTol));
+  const IntersectResult apart = intersect(IntersectInput{&tri, at(0, 0, 0), &tri, at(0.1, 0.1, 1)});
+  EXPECT_EQ(apart.status, IntersectStatus::kSeparated);
+  EXPECT_TRUE(apart.separating_normal_W.isApprox(Eigen::Vector3d(0, 0, 1), kTol));
+  // Footprints disjoint: the falling triangle misses.
+  EXPECT_EQ(mddOf(tri, at(0, 0, 0), tri, at(2, 2, 1), {0, 0, -1}).status, ContactStatus::kNoContact);
+}
+
+TEST(Query, ToiStopsAtMaxDistance) {
+  const Eigen::Isometry3d X_WB = at(-3, 0, 0);
+  EXPECT_EQ(toiOf(unitCube(), at(0, 0, 0), unitCube(), X_WB, {1, 0, 0}, 1.5).status, ToiStatus::kNever);
+  const ToiResult hit = toiOf(unitCube(), at(0, 0, 0), unitCube(), X_WB, {1, 0, 0}, 2.5);
+  EXPECT_EQ(hit.status, ToiStatus::kHit);
+  EXPECT_NEAR(hit.toi, 2.0, kTol);
+}
+
+TEST(Query, IntersectSeparatingNormalProvesSeparation) {
+  const IntersectResult r = intersect(IntersectInput{&unitCube(), at(0, 0, 0), &unitCube(), at(-1.2, 0.3, 0)});
+  ASSERT_EQ(r.status, IntersectStatus::kSeparated);
+  EXPECT_FALSE(r.intersecting);
+  double max_a = -1e9;
+  double min_b = 1e9;
+  for (const Eigen::Vector3d& v : unitCube().vertices()) {
+    max_a = std::max(max_a, r.separating_normal_W.dot(v));
+    min_b = std::min(min_b, r.separating_normal_W.dot(v + Eigen::Vector3d(-1.2, 0.3, 0)));
+  }
+  EXPECT_LT(max_a, min_b);
+}
+
+TEST(Query, InvalidInputsThrowOurErrors) {
+  const ConvexPolytope& c = unitCube();
+  auto message = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const InvalidInputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_EQ(message([&] {
+              mdd(DirectionalInput{nullptr, at(0, 0, 0), &c, at(0, 0, 0), {1, 0, 0}});
+            }),
+            "mdd: polytope A is null");
+  EXPECT_EQ(message([&] {
+              toi(DirectionalInput{&c, at(0, 0, 0), nullptr, at(0, 0, 0), {1, 0, 0}});
+            }),
+            "toi: polytope B is null");
+  EXPECT_NE(message([&] {
+              mdd(DirectionalInput{&c, at(0, 0, 0), &c, at(0, 0, 0), {0, 0, 0}});
+            }).find("direction"),
+            std::string::npos);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(message([&] {
+              toi(DirectionalInput{&c, at(0, 0, 0), &c, at(0, 0, 0), {nan, 0, 0}});
+            }).find("finite"),
+            std::string::npos);
+  Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();
+  scaled.linear() *= 2.0;
+  EXPECT_NE(message([&] { intersect(IntersectInput{&c, at(0, 0, 0), &c, scaled}); }).find("X_WB"), std::string::npos);
+  EXPECT_NE(message([&] {
+              mdd(DirectionalInput{&c, at(nan, 0, 0), &c, at(0, 0, 0), {1, 0, 0}});
+            }).find("X_WA"),
+            std::string::npos);
+  EXPECT_NE(message([&] {
+              toi(DirectionalInput{&c, at(0, 0, 0), &c, at(0, 0, 0), {1, 0, 0}, nan});
+            }).find("max_distance"),
+            std::string::npos);
+}
+
+/// A coherent sequence: B slides past A while the direction turns.
+std::vector<DirectionalInput> coherentSequence(const ConvexPolytope& a, const ConvexPolytope& b, int n) {
+  std::vector<DirectionalInput> out;
+  for (int k = 0; k < n; ++k) {
+    const double s = 0.01 * k;
+    Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
+    X_WB.linear() = Eigen::AngleAxisd(0.3 + s, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    X_WB.translation() = Eigen::Vector3d(-6.0 + 4.0 * s, 1.0 - s, 0.5);
+    out.push_back(DirectionalInput{&a, Eigen::Isometry3d::Identity(), &b, X_WB,
+                                   Eigen::Vector3d(1.0, 0.2 * std::sin(3 * s), 0.1 * std::cos(2 * s))});
+  }
+  return out;
+}
+
+TEST(Query, WarmStartGivesTheColdAnswers) {
+  const ConvexPolytope a = ConvexPolytope::fromPoints(generators::paperPolytope("P4"));
+  const ConvexPolytope b = ConvexPolytope::fromPoints(generators::paperPolytope("P6"));
+  WarmStart warm;
+  WarmStart warm_toi;
+  int contacts = 0;
+  for (const DirectionalInput& in : coherentSequence(a, b, 300)) {
+    const MddResult cold = mdd(in);
+    const MddResult hot = mdd(in, &warm);
+    ASSERT_EQ(cold.status, hot.status);
+    if (cold.status != ContactStatus::kNoContact) ++contacts;
+    EXPECT_NEAR(cold.distance, hot.distance, 1e-9 * 10) << "step with distance " << cold.distance;
+    const ToiResult t_cold = toi(in);
+    const ToiResult t_hot = toi(in, &warm_toi);
+    EXPECT_EQ(t_cold.status, t_hot.status);
+    if (t_cold.status == ToiStatus::kHit) {
+      EXPECT_NEAR(t_cold.toi, t_hot.toi, 1e-9 * 10);
+    }
+  }
+  EXPECT_GT(contacts, 200);  // the sequence is not all misses
+}
+
+TEST(Query, ConcurrentQueriesGiveTheSameAnswers) {
+  const ConvexPolytope a = ConvexPolytope::fromPoints(generators::paperPolytope("P3"));
+  const ConvexPolytope b = ConvexPolytope::fromPoints(generators::paperPolytope("P5"));
+  const std::vector<DirectionalInput> inputs = coherentSequence(a, b, 400);
+  std::vector<double> expected;
+  for (const DirectionalInput& in : inputs) expected.push_back(toi(in).toi);
+  std::vector<int> mismatches(4, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      WarmStart warm;
+      for (size_t k = 0; k < inputs.size(); ++k) {
+        const double cold = toi(inputs[k]).toi;
+        const double hot = toi(inputs[k], &warm).toi;
+        if (cold != expected[k] || std::abs(hot - expected[k]) > 1e-8) ++mismatches[t];
+      }
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) EXPECT_EQ(mismatches[t], 0) << "thread " << t;
+}
+
+}  // namespace
+}  // namespace mddual

@@ -1,0 +1,35 @@
+// Subcommands of the `mddual` tool. Each one lives in its own file and adds
+// itself to the app with a register*Command() function called from main.cpp.
+//
+// Exit-status convention, shared by every subcommand:
+//   0  success;
+//   1  the command ran to the end but some input lines failed or some answers
+//      disagreed (the callback throws CLI::RuntimeError(1));
+//   2  the command could not run: unreadable or unwritable file, unexpected
+//      exception (the callback throws FatalError, main prints "mddual: <what>").
+// CLI11 reports usage errors (unknown option, bad --method) with its own
+// message and exit code.
+#pragma once
+
+#include <stdexcept>
+
+namespace CLI {
+class App;
+}  // namespace CLI
+
+namespace mddual::cli {
+
+/// A failure that stops the whole command: main prints "mddual: " + what() on
+/// standard error and exits with status 2.
+class FatalError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// `mddual query`: MDD, TOI and intersection of point-set hulls read as JSON Lines.
+void registerQueryCommand(CLI::App& app);
+
+/// `mddual demo`: a few generated scenes answered by MDD-DUAL and by brute force.
+void registerDemoCommand(CLI::App& app);
+
+}  // namespace mddual::cli

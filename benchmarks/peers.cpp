@@ -1,0 +1,156 @@
+// Bullet and FCL wrappers (see peers.h). Compiled with BT_USE_DOUBLE_PRECISION
+// against the float64 build of Bullet; the third-party headers are included
+// as SYSTEM headers by benchmarks/CMakeLists.txt.
+#include "peers.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <BulletCollision/CollisionShapes/btConvexHullShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h>
+#include <BulletCollision/NarrowPhaseCollision/btSubSimplexConvexCast.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/narrowphase/continuous_collision.h>
+
+static_assert(sizeof(btScalar) == sizeof(double),
+              "Bullet must be the double-precision build (BT_USE_DOUBLE_PRECISION)");
+
+namespace mddual::bench {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+btTransform toBullet(const Eigen::Isometry3d& X) {
+  const Eigen::Matrix3d& R = X.linear();
+  const Eigen::Vector3d& p = X.translation();
+  return btTransform(btMatrix3x3(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)),
+                     btVector3(p.x(), p.y(), p.z()));
+}
+
+std::unique_ptr<btConvexHullShape> bulletHull(const ConvexPolytope& p) {
+  auto shape = std::make_unique<btConvexHullShape>();
+  for (const Eigen::Vector3d& v : p.vertices()) shape->addPoint(btVector3(v.x(), v.y(), v.z()), false);
+  shape->recalcLocalAabb();
+  // Bullet pads convex shapes by a 0.04 collision margin by default: remove it
+  // so that the cast sees exactly the same hull.
+  shape->setMargin(0.0);
+  return shape;
+}
+
+/// btGjkConvexCast or btSubsimplexConvexCast from B's pose to B's pose
+/// translated by cast_length * s; A does not move.
+template <class Cast>
+class BulletCast final : public ToiPeer {
+ public:
+  BulletCast(std::string name, const ConvexPolytope& a, const ConvexPolytope& b, double cast_length)
+      : name_(std::move(name)), a_(bulletHull(a)), b_(bulletHull(b)), length_(cast_length) {}
+  const std::string& name() const override { return name_; }
+  double toi(const Query& q) override {
+    const btTransform from_a = toBullet(q.X_WA);
+    const btTransform from_b = toBullet(q.X_WB);
+    btTransform to_b = from_b;
+    const Eigen::Vector3d d = length_ * q.s_W;
+    to_b.setOrigin(from_b.getOrigin() + btVector3(d.x(), d.y(), d.z()));
+    Cast cast(a_.get(), b_.get(), &simplex_);
+    btConvexCast::CastResult result;
+    if (!cast.calcTimeOfImpact(from_a, from_a, from_b, to_b, result)) return kInf;
+    const double fraction = result.m_fraction;
+    if (!std::isfinite(fraction)) throw std::runtime_error(name_ + ": non-finite fraction");
+    return fraction > 1.0 ? kInf : fraction * length_;
+  }
+
+ private:
+  std::string name_;
+  std::unique_ptr<btConvexHullShape> a_;
+  std::unique_ptr<btConvexHullShape> b_;
+  btVoronoiSimplexSolver simplex_;
+  double length_;
+};
+
+std::shared_ptr<fcl::Convex<double>> fclConvex(const ConvexPolytope& p) {
+  auto vertices = std::make_shared<std::vector<fcl::Vector3<double>>>(p.vertices().begin(), p.vertices().end());
+  auto faces = std::make_shared<std::vector<int>>();
+  for (int f = 0; f < p.numFaces(); ++f) {
+    const IndexRange loop = p.faceVertices(f);
+    faces->push_back(loop.size());
+    faces->insert(faces->end(), loop.begin(), loop.end());
+  }
+  auto convex = std::make_shared<fcl::Convex<double>>(vertices, p.numFaces(), faces, /*throw_if_invalid=*/true);
+  convex->computeLocalAABB();
+  return convex;
+}
+
+class FclCcd final : public ToiPeer {
+ public:
+  FclCcd(std::string name, const ConvexPolytope& a, const ConvexPolytope& b, double cast_length,
+         fcl::CCDSolverType solver, fcl::GJKSolverType gjk)
+      : name_(std::move(name)), a_(fclConvex(a)), b_(fclConvex(b)), length_(cast_length) {
+    request_.ccd_motion_type = fcl::CCDM_TRANS;
+    request_.ccd_solver_type = solver;
+    request_.gjk_solver_type = gjk;
+  }
+  const std::string& name() const override { return name_; }
+  double toi(const Query& q) override {
+    fcl::Transform3<double> to_b = q.X_WB;
+    to_b.translation() += length_ * q.s_W;
+    fcl::ContinuousCollisionResult<double> result;
+    const double r = fcl::continuousCollide<double>(a_.get(), q.X_WA, q.X_WA, b_.get(), q.X_WB, to_b, request_, result);
+    if (r < 0.0) throw std::runtime_error(name_ + ": continuousCollide returned " + std::to_string(r));
+    if (!result.is_collide) return kInf;
+    if (!std::isfinite(result.time_of_contact)) throw std::runtime_error(name_ + ": non-finite time of contact");
+    return result.time_of_contact * length_;
+  }
+
+ private:
+  std::string name_;
+  std::shared_ptr<fcl::Convex<double>> a_;
+  std::shared_ptr<fcl::Convex<double>> b_;
+  double length_;
+  fcl::ContinuousCollisionRequest<double> request_;
+};
+
+}  // namespace
+
+std::vector<std::string> peerNames() {
+  return {"bullet_gjk", "bullet_subsimplex", "fcl_naive", "fcl_ca_libccd", "fcl_ca_indep"};
+}
+
+std::string peerSettings(const std::string& name) {
+  if (name == "bullet_gjk") return "btGjkConvexCast, btConvexHullShape margin 0, btVoronoiSimplexSolver (double)";
+  if (name == "bullet_subsimplex") {
+    return "btSubsimplexConvexCast, btConvexHullShape margin 0, btVoronoiSimplexSolver (double)";
+  }
+  if (name == "fcl_naive") {
+    return "fcl::continuousCollide CCDC_NAIVE, CCDM_TRANS, default num_max_iterations=10 toc_err=1e-4";
+  }
+  if (name == "fcl_ca_libccd") return "fcl::continuousCollide CCDC_CONSERVATIVE_ADVANCEMENT, CCDM_TRANS, GST_LIBCCD";
+  if (name == "fcl_ca_indep") return "fcl::continuousCollide CCDC_CONSERVATIVE_ADVANCEMENT, CCDM_TRANS, GST_INDEP";
+  return "";
+}
+
+std::vector<std::unique_ptr<ToiPeer>> makePeers(const ConvexPolytope& a, const ConvexPolytope& b, double cast_length,
+                                                const std::vector<std::string>& names) {
+  std::vector<std::unique_ptr<ToiPeer>> out;
+  for (const std::string& n : peerNames()) {
+    if (!names.empty() && std::find(names.begin(), names.end(), n) == names.end()) continue;
+    if (n == "bullet_gjk") out.push_back(std::make_unique<BulletCast<btGjkConvexCast>>(n, a, b, cast_length));
+    if (n == "bullet_subsimplex") {
+      out.push_back(std::make_unique<BulletCast<btSubsimplexConvexCast>>(n, a, b, cast_length));
+    }
+    if (n == "fcl_naive") {
+      out.push_back(std::make_unique<FclCcd>(n, a, b, cast_length, fcl::CCDC_NAIVE, fcl::GST_LIBCCD));
+    }
+    if (n == "fcl_ca_libccd") {
+      out.push_back(
+          std::make_unique<FclCcd>(n, a, b, cast_length, fcl::CCDC_CONSERVATIVE_ADVANCEMENT, fcl::GST_LIBCCD));
+    }
+    if (n == "fcl_ca_indep") {
+      out.push_back(std::make_unique<FclCcd>(n, a, b, cast_length, fcl::CCDC_CONSERVATIVE_ADVANCEMENT, fcl::GST_INDEP));
+    }
+  }
+  return out;
+}
+
+}  // namespace mddual::bench

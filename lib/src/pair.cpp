@@ -42,16 +42,16 @@ PairGeometry::PairGeometry(const ConvexPolytope* a, const Eigen::Isometry3d& X_W
   }
 }
 
-int PairGeometry::supportA(const Eigen::Vector3d& d_A, int hint, SearchStats* stats) const {
+int PairGeometry::supportA(const Eigen::Vector3d& d_A, int hint, SearchStats* stats, double* gap) const {
   SupportStats s;
-  const int v = a_.supportVertex(d_A, hint < a_.numVertices() ? hint : -1, &s);
+  const int v = a_.supportVertex(d_A, hint < a_.numVertices() ? hint : -1, &s, gap);
   if (stats != nullptr) stats->support_vertices += s.vertices_visited;
   return v;
 }
 
-int PairGeometry::supportMinusB(const Eigen::Vector3d& d_A, int hint, SearchStats* stats) const {
+int PairGeometry::supportMinusB(const Eigen::Vector3d& d_A, int hint, SearchStats* stats, double* gap) const {
   SupportStats s;
-  const int v = b_.supportVertex(-aToB(d_A), hint < b_.numVertices() ? hint : -1, &s);
+  const int v = b_.supportVertex(-aToB(d_A), hint < b_.numVertices() ? hint : -1, &s, gap);
   if (stats != nullptr) stats->support_vertices += s.vertices_visited;
   return v;
 }
@@ -65,14 +65,16 @@ MPoint PairGeometry::supportM(const Eigen::Vector3d& d_A, int hint_a, int hint_b
 }
 
 Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query) {
-  const double n = s.norm();
-  if (!s.allFinite() || !(n > 0.0) || !std::isfinite(n)) {
+  // Divide by the largest coordinate first: |s| itself may overflow or
+  // underflow for valid directions such as [1e300, 0, 0] or [1e-200, 0, 0].
+  const double largest = s.cwiseAbs().maxCoeff();
+  if (!s.allFinite() || !(largest > 0.0)) {
     std::ostringstream msg;
     msg.precision(17);
     msg << query << ": direction [" << s.x() << ", " << s.y() << ", " << s.z() << "] must be finite and nonzero";
     throw InvalidInputError(msg.str());
   }
-  return s / n;
+  return (s / largest).normalized();
 }
 
 std::string describeQuery(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,

@@ -37,10 +37,11 @@ class PairGeometry {
   Eigen::Vector3d aToB(const Eigen::Vector3d& v_A) const { return R_AB_.transpose() * v_A; }
   const Eigen::Vector3d& p_AB() const { return p_AB_; }
 
-  /// Support vertex of A in direction d_A (hill climb from hint, or cold).
-  int supportA(const Eigen::Vector3d& d_A, int hint, SearchStats* stats) const;
+  /// Support vertex of A in direction d_A (hill climb from hint, or cold);
+  /// `gap` as in ConvexPolytope::supportVertex.
+  int supportA(const Eigen::Vector3d& d_A, int hint, SearchStats* stats, double* gap = nullptr) const;
   /// Vertex of B minimising d_A . b, i.e. the support of -B in direction d_A.
-  int supportMinusB(const Eigen::Vector3d& d_A, int hint, SearchStats* stats) const;
+  int supportMinusB(const Eigen::Vector3d& d_A, int hint, SearchStats* stats, double* gap = nullptr) const;
   /// Support point of M in direction d_A.
   MPoint supportM(const Eigen::Vector3d& d_A, int hint_a, int hint_b, SearchStats* stats) const;
 

@@ -295,6 +295,20 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
     incident[e.v0].push_back({e.v1, id});
     incident[e.v1].push_back({e.v0, id});
   }
+  // Face edge lists, aligned with the face loops.
+  std::map<std::pair<int, int>, int> edge_of;
+  for (int e = 0; e < p.numEdges(); ++e) {
+    const ConvexPolytope::Edge& edge = p.edges_[e];
+    edge_of[{std::min(edge.v0, edge.v1), std::max(edge.v0, edge.v1)}] = e;
+  }
+  for (int f = 0; f < p.numFaces(); ++f) {
+    const IndexRange loop = p.faceVertices(f);
+    for (int i = 0; i < loop.size(); ++i) {
+      const int a = loop[i];
+      const int b = loop[(i + 1) % loop.size()];
+      p.face_edge_ids_.push_back(edge_of.at({std::min(a, b), std::max(a, b)}));
+    }
+  }
   const int euler = nv - p.numEdges() + p.numFaces();
   if (euler != 2) {
     throw NumericalError("polytope: hull topology fails Euler's formula (V - E + F = " + std::to_string(euler) + ")");

@@ -185,9 +185,9 @@ LineInterval flatInterval(const PairGeometry& pair, const Eigen::Vector3d& u_A, 
 
 /// Signed MDD and status from the computed ends (ALGORITHMS.md section 1).
 void classify(const LineInterval& line, double tol, MddResult* r) {
-  if (!line.hit) return;  // kNoContact, fields stay NaN
-  r->t_lo = line.lo ? line.lo->t : kNaN;
-  r->t_hi = line.hi ? line.hi->t : kNaN;
+  if (!line.hit) return;                        // kNoContact, fields stay NaN
+  r->t_lo = line.lo ? line.lo->t + 0.0 : kNaN;  // + 0.0: no negative zero
+  r->t_hi = line.hi ? line.hi->t + 0.0 : kNaN;
   if (line.lo && r->t_lo > tol) {
     r->status = ContactStatus::kSeparated;
     r->distance = r->t_lo;

@@ -58,24 +58,31 @@ bool hullAdjacency(const std::vector<Eigen::Vector3d>& points, std::vector<int>*
 
 }  // namespace
 
-int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats) const {
+int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats,
+                                           double* gap) const {
   int best = start;
   double best_value = d_P.dot(vertices_P_[best]);
   int visited = 1;
+  double runner_up = -std::numeric_limits<double>::infinity();  // best neighbour of `best`
   for (;;) {
     int next = best;
+    double next_value = best_value;
+    runner_up = -std::numeric_limits<double>::infinity();
     for (int w : vertexNeighbors(best)) {
       const double value = d_P.dot(vertices_P_[w]);
       ++visited;
-      if (value > best_value) {
-        best_value = value;
+      runner_up = std::max(runner_up, value);
+      if (value > next_value) {
+        next_value = value;
         next = w;
       }
     }
     if (next == best) break;
     best = next;
+    best_value = next_value;
   }
   if (stats != nullptr) stats->vertices_visited += visited;
+  if (gap != nullptr) *gap = best_value - runner_up;
   return best;
 }
 
@@ -120,8 +127,8 @@ int ConvexPolytope::descendLevel(const HierarchyLevel& level, const Eigen::Vecto
   return best == local ? local : climbLevel(level, d_P, best, stats);
 }
 
-int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats) const {
-  if (levels_.empty()) return supportVertexHillClimb(d_P, 0, stats);
+int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats, double* gap) const {
+  if (levels_.empty()) return supportVertexHillClimb(d_P, 0, stats, gap);
   // Top level: exhaustive scan of a constant number of vertices.
   const HierarchyLevel& top = levels_.back();
   int local = 0;
@@ -151,12 +158,12 @@ int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportSt
     }
   }
   if (stats != nullptr) stats->vertices_visited += removed_begin_[v + 1] - removed_begin_[v];
-  return supportVertexHillClimb(d_P, start, stats);
+  return supportVertexHillClimb(d_P, start, stats, gap);
 }
 
-int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportStats* stats) const {
-  if (hint >= 0) return supportVertexHillClimb(d_P, hint, stats);
-  return supportVertexHierarchy(d_P, stats);
+int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportStats* stats, double* gap) const {
+  if (hint >= 0) return supportVertexHillClimb(d_P, hint, stats, gap);
+  return supportVertexHierarchy(d_P, stats, gap);
 }
 
 void ConvexPolytope::supportTies(const Eigen::Vector3d& d_P, int v, double tol, std::vector<int>* out) const {

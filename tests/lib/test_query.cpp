@@ -57,6 +57,16 @@ TEST(Query, TwoCubesSeparatedAlongX) {
   EXPECT_NEAR(toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {0.01, 0, 0}).toi, 2.0, kTol);
 }
 
+TEST(Query, ExtremeDirectionMagnitudes) {
+  // Regression: |s| overflowed (1e300) or underflowed (1e-200) in the
+  // normalisation and valid directions were rejected.
+  for (const double scale : {1e300, 1e-200, 1e-310}) {
+    const MddResult r = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {scale, 0, 0});
+    EXPECT_EQ(r.status, ContactStatus::kSeparated) << scale;
+    EXPECT_NEAR(r.distance, 2.0, kTol) << scale;
+  }
+}
+
 TEST(Query, MovingAwayIsSeparatedBackwardAndNeverHits) {
   const MddResult r = mddOf(unitCube(), at(0, 0, 0), unitCube(), at(-3, 0, 0), {-1, 0, 0});
   EXPECT_EQ(r.status, ContactStatus::kSeparated);
@@ -82,6 +92,7 @@ TEST(Query, TouchingCubes) {
   EXPECT_EQ(r.status, ContactStatus::kTouching);
   EXPECT_EQ(r.distance, 0.0);
   EXPECT_NEAR(r.t_lo, 0.0, kTol);
+  EXPECT_FALSE(std::signbit(r.t_lo));  // no -0.0 in outputs
   EXPECT_NEAR(r.t_hi, 2.0, kTol);
   const ToiResult t = toiOf(unitCube(), at(0, 0, 0), unitCube(), at(-1, 0.3, 0.1), {1, 0, 0});
   EXPECT_EQ(t.status, ToiStatus::kInContact);

@@ -92,7 +92,8 @@ void blobScene(Rng& rng, QueryOracle& oracle, Tally* tally, double scale, const 
 
 TEST(QueryFamilies, RoundBlobs) {
   const Tally t = runFamily(
-      500, [](Rng& rng, QueryOracle& o, Tally* tally) { blobScene(rng, o, tally, 1.0, Eigen::Vector3d::Zero(), 1.0); }, 101);
+      500, [](Rng& rng, QueryOracle& o, Tally* tally) { blobScene(rng, o, tally, 1.0, Eigen::Vector3d::Zero(), 1.0); },
+      101);
   EXPECT_GE(t.queries, 5000);
   EXPECT_GE(t.fraction(t.separated), 0.15);
   EXPECT_GE(t.fraction(t.penetrating), 0.15);

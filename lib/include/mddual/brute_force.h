@@ -29,8 +29,9 @@ class BruteForce {
   BruteForce(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
              const Eigen::Isometry3d& X_WB);
 
-  /// Same contract as mdd(); SearchStats stay zero, and both ends t_lo and
-  /// t_hi are always filled when the line meets M.
+  /// Same contract as mdd() except: SearchStats stay zero, both ends t_lo and
+  /// t_hi are always filled when the line meets M, and the contact's features
+  /// are kNone (M is built without them).
   MddResult mdd(const Eigen::Vector3d& s_W) const;
   /// Same contract as toi().
   ToiResult toi(const Eigen::Vector3d& s_W, double max_distance = std::numeric_limits<double>::infinity()) const;

@@ -91,6 +91,8 @@ class ConvexPolytope {
   double faceOffset(int f) const { return face_offsets_[f]; }
   /// The face's vertices, counter-clockwise seen from outside (along -n).
   IndexRange faceVertices(int f) const { return range(face_vertex_begin_, face_vertex_ids_, f); }
+  /// The face's edges in loop order: edge k joins faceVertices(f)[k] and [k+1].
+  IndexRange faceEdges(int f) const { return range(face_vertex_begin_, face_edge_ids_, f); }
 
   const Edge& edge(int e) const { return edges_[e]; }
 
@@ -108,13 +110,18 @@ class ConvexPolytope {
   /// when one is given (>= 0), otherwise descends the Dobkin-Kirkpatrick
   /// hierarchy (large polytopes) or hill-climbs from vertex 0. Exact for any
   /// nonzero d_P; when several vertices tie, any of them may be returned.
-  int supportVertex(const Eigen::Vector3d& d_P, int hint = -1, SupportStats* stats = nullptr) const;
+  /// When `gap` is given it receives d_P . v minus the best value among v's
+  /// neighbours (>= 0): a gap within tolerance means the supporting feature
+  /// is an edge or a face rather than the vertex alone.
+  int supportVertex(const Eigen::Vector3d& d_P, int hint = -1, SupportStats* stats = nullptr,
+                    double* gap = nullptr) const;
 
   /// Hill climbing only (from `start`), for tests and benchmarks.
-  int supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats = nullptr) const;
+  int supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats = nullptr,
+                             double* gap = nullptr) const;
   /// Hierarchy descent only (falls back to hill climbing from vertex 0 when the
   /// polytope is too small to have a hierarchy), for tests and benchmarks.
-  int supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats = nullptr) const;
+  int supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportStats* stats = nullptr, double* gap = nullptr) const;
   /// Levels of the Dobkin-Kirkpatrick hierarchy (0 when there is none).
   int hierarchyDepth() const { return static_cast<int>(levels_.size()); }
 
@@ -150,6 +157,7 @@ class ConvexPolytope {
   std::vector<double> face_offsets_;
   std::vector<int> face_vertex_begin_;
   std::vector<int> face_vertex_ids_;
+  std::vector<int> face_edge_ids_;
   std::vector<Edge> edges_;
   std::vector<int> vertex_adj_begin_;
   std::vector<int> vertex_neighbors_;

@@ -71,8 +71,11 @@ struct Feature {
   int index = -1;
 };
 
-/// Work done by one query. Faces of M are counted once per search phase, the
-/// first time the phase evaluates them (paper VII counts them the same way).
+/// Work done by one query. The face counts are candidate faces of M (FV, VF
+/// and EE supporting planes) evaluated by each phase, counted once per ray
+/// search. On generic inputs each is a distinct face of M; on degenerate ones
+/// (parallel faces of A and B, boxes in the same orientation) several
+/// candidates name the same face of M, so the counts can exceed |faces of M|.
 struct SearchStats {
   int centre_iterations = 0;  ///< portal refinement steps to find the centre of duality
   int fv_faces = 0;           ///< faces of M evaluated in SEARCH-FV (facet of A + vertex of B)
@@ -140,12 +143,16 @@ struct DirectionalInput {
 
 /// Result of mdd().
 ///
-/// | status       | distance          | t_lo, t_hi | contact                              |
-/// |--------------|-------------------|------------|--------------------------------------|
-/// | kSeparated   | t_lo > 0 or -t_hi | finite     | at t = t_lo (if t_lo > 0) or t_hi    |
-/// | kTouching    | 0                 | finite     | at t = 0 (the face of M holding 0)   |
-/// | kPenetrating | -min(-t_lo, t_hi) | finite     | at the end that gives `distance`     |
-/// | kNoContact   | NaN               | NaN        | all NaN, features kNone              |
+/// | status       | distance          | t_lo, t_hi                          | contact                           |
+/// |--------------|-------------------|-------------------------------------|-----------------------------------|
+/// | kSeparated   | t_lo > 0 or -t_hi | the near end; the far end is NaN   | at the near end                   |
+/// |              |                   | (not computed: one search suffices) |                                   |
+/// | kTouching    | 0                 | both                                | at t = 0                          |
+/// | kPenetrating | -min(-t_lo, t_hi) | both                                | at the end that gives `distance`  |
+/// | kNoContact   | NaN               | NaN                                 | all NaN, features kNone           |
+///
+/// "Near end": t_lo when B reaches A moving forward (t_lo > 0), t_hi when it
+/// must move backward (t_hi < 0). bruteForce*() fill both ends always.
 struct MddResult {
   ContactStatus status = ContactStatus::kNoContact;
   double distance = std::numeric_limits<double>::quiet_NaN();  ///< signed MDD (world units)

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Builds mddual and runs the whole test suite (this is what CI runs):
+#   1. Release build of everything, all ctest tests (core, CLI, install);
+#   2. the core tests again under AddressSanitizer + UndefinedBehaviorSanitizer;
+#   3. the clang-format check.
+# Set MDDUAL_JOBS to change the parallelism (default: all cores).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/install-deps.sh
+
+jobs="${MDDUAL_JOBS:-$(nproc)}"
+echo "== release build and all tests"
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DMDDUAL_WARNINGS_AS_ERRORS=ON
+cmake --build build/release -j "$jobs"
+ctest --test-dir build/release --output-on-failure -j "$jobs"
+
+echo "== core tests under address + undefined sanitizers"
+cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE=address,undefined \
+  -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
+cmake --build build/sanitize -j "$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build/sanitize -L core --output-on-failure -j "$jobs"
+
+echo "== format"
+./scripts/check-format.sh
+echo "== all tests passed"

@@ -9,8 +9,10 @@
 #   out/bench-core.txt    the human-readable table printed by the run
 #   out/bench-core.err    self-check messages and failure examples (with the
 #                         queries, ready to paste into a test)
-# Run time on the 2-core development machine (AMD EPYC VM, shared): about
-# 6 minutes for the full protocol, plus the build; with --quick about 40 s.
+# Run time on the 2-core development machine (AMD EPYC VM, shared with other
+# builds): about 3 minutes for the full protocol (167 s measured at c95dbce;
+# a third of it builds the scenes and brute-force references), plus the build;
+# with --quick about 40 s.
 # Extra arguments go to mddual_bench_core, e.g.
 #   scripts/run-core-bench.sh --quick
 #   scripts/run-core-bench.sh --pair P4-P6 --directions 10

@@ -54,17 +54,30 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
   const Eigen::Vector3d e2 = u_A.cross(e1);
   auto project = [&](const Eigen::Vector3d& x) { return Eigen::Vector2d(x.dot(e1), x.dot(e2)); };
   const double tol = pair.touchTolerance();
-  int hint_a = warm != nullptr ? warm->support_a : -1;
-  int hint_b = warm != nullptr ? warm->support_b : -1;
+  // Warm hints per stage: consecutive queries on a pair search in similar
+  // directions at the same stage (0: toward the origin, 1: across the ray),
+  // so those start where they ended last time; refinement steps start from
+  // the previous support of this query, whose direction is close.
+  int stage = 0;
+  int hint_a = -1;
+  int hint_b = -1;
 
   Centre out;
   auto support = [&](const Eigen::Vector2d& dir) {
     PlanarSupport s;
     const Eigen::Vector2d n = dir.normalized();
     s.w_A = n.x() * e1 + n.y() * e2;
+    const bool warm_stage = warm != nullptr && stage < 2;
+    if (warm_stage && warm->centre_a[stage] >= 0) hint_a = warm->centre_a[stage];
+    if (warm_stage && warm->centre_b[stage] >= 0) hint_b = warm->centre_b[stage];
     s.m = pair.supportM(s.w_A, hint_a, hint_b, stats);
     hint_a = s.m.va;
     hint_b = s.m.vb;
+    if (warm_stage) {
+      warm->centre_a[stage] = hint_a;
+      warm->centre_b[stage] = hint_b;
+    }
+    ++stage;
     s.v = project(s.m.p_A);
     s.h = n.dot(s.v);
     return s;
@@ -78,12 +91,10 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
     out.vb = s.m.vb;
     return true;
   };
-  auto finish = [&](const Eigen::Vector3d& c0) {
-    if (warm != nullptr) {
-      warm->support_a = hint_a;
-      warm->support_b = hint_b;
-    }
+  auto finish = [&](const Eigen::Vector3d& c0, const Eigen::Vector3d& m1, const Eigen::Vector3d& m2) {
     out.kind = Centre::Kind::kInterior;
+    out.m1_A = m1;
+    out.m2_A = m2;
     out.tau = c0.dot(u_A);
     out.c_A = out.tau * u_A;  // exactly on the line
     return out;
@@ -92,7 +103,7 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
   // 1. The interior point g, projected.
   const Eigen::Vector3d& g = pair.interiorPoint();
   const Eigen::Vector2d v0 = project(g);
-  if (v0.isZero(0.0)) return finish(g);
+  if (v0.isZero(0.0)) return finish(g, g, g);
 
   // 2. Discovery.
   const Eigen::Vector2d r = -v0.normalized();
@@ -108,7 +119,7 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
   if (side1 == 0) {
     // v1 lies on the ray beyond the origin: the origin is on segment v0-v1.
     const double lambda = v0.norm() / r.dot(s1.v - v0);
-    return finish((1.0 - lambda) * g + lambda * s1.m.p_A);
+    return finish((1.0 - lambda) * g + lambda * s1.m.p_A, s1.m.p_A, s1.m.p_A);
   }
   // v2: support perpendicular to v0-v1 on the origin's side. Everything on
   // that side of the line v0-v1 meets the ray ahead of v0, so once v1 and v2
@@ -167,7 +178,7 @@ Centre findCentre(const PairGeometry& pair, const Eigen::Vector3d& u_A, WarmStar
   const double w1 = std::max(0.0, cross2(-v0, s2.v - v0) / area);
   const double w2 = std::max(0.0, cross2(s1.v - v0, -v0) / area);
   const double w0 = std::max(0.0, 1.0 - w1 - w2);
-  return finish(w0 * g + w1 * s1.m.p_A + w2 * s2.m.p_A);
+  return finish(w0 * g + w1 * s1.m.p_A + w2 * s2.m.p_A, s1.m.p_A, s2.m.p_A);
 }
 
 }  // namespace mddual::detail

@@ -8,6 +8,7 @@
 
 #include "centre.h"
 #include "mddual/error.h"
+#include "overlap.h"
 #include "pair.h"
 #include "planar.h"
 #include "search.h"
@@ -324,7 +325,18 @@ ToiResult toi(const DirectionalInput& input, WarmStart* warm) {
       r.toi = 0.0;
       return r;
     }
+    // A portal refinement from the centre toward the origin (along the line)
+    // settles most overlapping starts in a few supports: a tetrahedron of M
+    // holding the origin means toi = 0; a separating plane with the centre
+    // behind the origin means the line leaves M before reaching it (never).
     const bool forward = centre.tau > 0.0;
+    const detail::OverlapTest quick = detail::portalOverlapTest(pair, centre.c_A, 0.0, warm, &r.stats);
+    if (quick.kind == detail::OverlapTest::Kind::kOverlap) {
+      r.status = ToiStatus::kInContact;
+      r.toi = 0.0;
+      return r;
+    }
+    if (quick.kind == detail::OverlapTest::Kind::kSeparated && !forward) return r;
     RayQuery q;
     q.c_A = centre.c_A;
     q.w_A = forward ? Eigen::Vector3d(-u_A) : u_A;
@@ -389,8 +401,14 @@ IntersectResult intersect(const IntersectInput& input, WarmStart* warm) {
       return overlapping(IntersectStatus::kTouching);
     }
     // 4. The centre of duality is g itself (paper V: any interior point of M
-    //    other than the origin); g = 0 means the origin is interior.
+    //    other than the origin); g = 0 means the origin is interior. Before the
+    //    search, three supports of M often settle it: a tetrahedron holding
+    //    the origin deeper than tol proves penetration, a negative support
+    //    value proves separation.
     if (g_norm == 0.0) return overlapping(IntersectStatus::kPenetrating);
+    const detail::OverlapTest quick = detail::portalOverlapTest(pair, g, tol, warm, &r.stats);
+    if (quick.kind == detail::OverlapTest::Kind::kSeparated) return separated(quick.n_A);
+    if (quick.kind == detail::OverlapTest::Kind::kOverlap) return overlapping(IntersectStatus::kPenetrating);
     // 5. Ray search from g through the origin, stopping at the first face of M
     //    with offset h < -tol: its plane separates the origin from M.
     RayQuery q;

@@ -119,8 +119,13 @@ struct FaceOfM {
 /// per pair of polytopes and per thread; reusing it for another pair is safe
 /// (indices are range-checked) but useless.
 struct WarmStart {
-  int support_a = -1;  ///< last support vertex of A used by the centre phase
-  int support_b = -1;  ///< last support vertex of B used by the centre phase
+  /// Support vertices of A and B where the centre phase's first two supports
+  /// ended (0: toward the origin, 1: across the ray), and where the overlap
+  /// test's three supports ended.
+  int centre_a[2] = {-1, -1};
+  int centre_b[2] = {-1, -1};
+  int overlap_a[3] = {-1, -1, -1};
+  int overlap_b[3] = {-1, -1, -1};
   FaceOfM forward;     ///< optimal face for the entry point t_lo
   FaceOfM backward;    ///< optimal face for the exit point t_hi
   FaceOfM separating;  ///< last separating face found by intersect()

@@ -137,6 +137,7 @@ void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points) {
   }
   // Phase 5: hierarchy for fast cold support queries.
   out_->buildHierarchy();
+  out_->buildDirectionTable();
 }
 
 void PolytopeBuilder::buildFlat(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal) {

@@ -242,26 +242,29 @@ bool Searcher::evalEE(const EdgeInA& ea, const EdgeInA& eb, Candidate* c) const 
   // EE face (paper II-C, VI-B): the Gaussian arcs of edge ea of A and of edge
   // -eb of -B cross at n = +-(dir_a x dir_b). n is on the arc of ea when it is
   // in ea's wedge, and on the arc of -eb when -n is in eb's wedge.
-  Eigen::Vector3d x = ea.dir.cross(eb.dir);
+  // The sign tests need no normalisation, so most pairs (which do not
+  // cross) cost a cross product and four dot products.
+  const Eigen::Vector3d x = ea.dir.cross(eb.dir);
+  const double al = x.dot(ea.wedge_left);
+  const double ar = x.dot(ea.wedge_right);
+  const double bl = x.dot(eb.wedge_left);
+  const double br = x.dot(eb.wedge_right);
+  double sign = 0.0;
+  if (al >= 0.0 && ar >= 0.0 && bl <= 0.0 && br <= 0.0) sign = 1.0;
+  if (sign == 0.0 && al <= 0.0 && ar <= 0.0 && bl >= 0.0 && br >= 0.0) sign = -1.0;
+  if (sign == 0.0) return false;
   const double sine = x.norm();
   if (sine <= defaults::kParallelSin) return false;  // parallel edges: no EE face
-  x /= sine;
-  for (const double sign : {1.0, -1.0}) {
-    const Eigen::Vector3d n = sign * x;
-    const double margin =
-        std::min({n.dot(ea.wedge_left), n.dot(ea.wedge_right), -n.dot(eb.wedge_left), -n.dot(eb.wedge_right)});
-    if (margin >= 0.0) {
-      c->face = {FaceOfM::Kind::kEE, ea.id, eb.id};
-      c->n = n;
-      c->generic = margin > defaults::kParallelSin;
-      c->h = n.dot(ea.p0) - n.dot(eb.p0);
-      c->va = ea.v0;
-      c->vb = eb.v0;
-      c->phi = objective(n, c->h);
-      return true;
-    }
-  }
-  return false;
+  const Eigen::Vector3d n = (sign / sine) * x;
+  const double margin = std::min({sign * al, sign * ar, -sign * bl, -sign * br}) / sine;
+  c->face = {FaceOfM::Kind::kEE, ea.id, eb.id};
+  c->n = n;
+  c->generic = margin > defaults::kParallelSin;
+  c->h = n.dot(ea.p0) - n.dot(eb.p0);
+  c->va = ea.v0;
+  c->vb = eb.v0;
+  c->phi = objective(n, c->h);
+  return true;
 }
 
 bool Searcher::take(const Candidate& c, Phase phase, Candidate* best) {
@@ -543,8 +546,10 @@ RayExit searchRay(const PairGeometry& pair, const RayQuery& query, SearchStats* 
 }
 
 Eigen::Vector3d contactPointOnA(const PairGeometry& pair, const RayExit& exit, const Eigen::Vector3d& x_A) {
-  std::vector<int> ties_a;
-  std::vector<int> ties_b;
+  std::vector<int>& ties_a = scratch().ties_a;
+  std::vector<int>& ties_b = scratch().ties_b;
+  ties_a.clear();
+  ties_b.clear();
   const double tie = pair.tieTolerance();
   pair.a().supportTies(exit.n_A, exit.va, tie, &ties_a);
   pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, tie, &ties_b);

@@ -57,6 +57,23 @@ TEST(Support, HierarchyOnLargeHullsBeatsClimbing) {
   }
 }
 
+TEST(Support, DirectionTableStartsNextToTheAnswer) {
+  // Cold queries start from the direction table's vertex: on the paper's
+  // 500-vertex ellipsoid they evaluate a couple of neighbourhoods, not a
+  // path across the polytope (measured: about 14 vertices per query).
+  const ConvexPolytope p = ConvexPolytope::fromPoints(generators::paperPolytope("P4"));
+  generators::Rng rng(16);
+  SupportStats table;
+  SupportStats climb;
+  for (int i = 0; i < 1000; ++i) {
+    const Eigen::Vector3d d = generators::randomUnitVector(rng);
+    p.supportVertex(d, -1, &table);
+    p.supportVertexHillClimb(d, 0, &climb);
+  }
+  EXPECT_LT(table.vertices_visited / 1000, 25);
+  EXPECT_LT(table.vertices_visited * 3, climb.vertices_visited);
+}
+
 TEST(Support, SmallPolytopesHaveNoHierarchy) {
   const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box({1, 1, 1}));
   EXPECT_EQ(cube.hierarchyDepth(), 0);

@@ -11,8 +11,8 @@
 //   - edges with their two faces and the edge's arc on the Gaussian sphere,
 //     stored as a wedge test (see Edge);
 //   - vertex adjacency (neighbour vertices, incident edges, incident faces);
-//   - support-vertex queries: hill climbing from a hint, and for large
-//     polytopes a Dobkin-Kirkpatrick hierarchy.
+//   - support-vertex queries: hill climbing from a hint or from a direction
+//     table, which a Dobkin-Kirkpatrick hierarchy fills (O(log n) per query).
 //
 // Flat polygons (all points coplanar) are valid polytopes: they have two faces
 // (normals +N and -N, same vertex loop), and every boundary edge joins those
@@ -106,10 +106,11 @@ class ConvexPolytope {
   /// Largest distance from centroid() to a vertex.
   double radius() const { return radius_; }
 
-  /// Index of a vertex v maximising d_P . vertex(v). Hill-climbs from `hint`
-  /// when one is given (>= 0), otherwise descends the Dobkin-Kirkpatrick
-  /// hierarchy (large polytopes) or hill-climbs from vertex 0. Exact for any
-  /// nonzero d_P; when several vertices tie, any of them may be returned.
+  /// Index of a vertex v maximising d_P . vertex(v). Hill-climbs from the
+  /// better of `hint` (when >= 0) and the direction table's vertex for d_P (a
+  /// cube map of directions, about one cell per vertex, filled with the
+  /// Dobkin-Kirkpatrick hierarchy). Exact for any nonzero d_P; when several
+  /// vertices tie, any of them may be returned.
   /// When `gap` is given it receives d_P . v minus the best value among v's
   /// neighbours (>= 0): a gap within tolerance means the supporting feature
   /// is an edge or a face rather than the vertex alone.
@@ -148,6 +149,9 @@ class ConvexPolytope {
     return IndexRange(ids.data() + begin[i], ids.data() + begin[i + 1]);
   }
   void buildHierarchy();
+  void buildDirectionTable();
+  /// Start vertex for direction d from the direction table (-1 if none).
+  int tableStart(const Eigen::Vector3d& d_P) const;
   int climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start, SupportStats* stats) const;
   int descendLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local, SupportStats* stats) const;
 
@@ -167,7 +171,11 @@ class ConvexPolytope {
   Eigen::Vector3d centroid_P_ = Eigen::Vector3d::Zero();
   double radius_ = 0.0;
   std::vector<HierarchyLevel> levels_;  ///< levels_[0] is the first coarsened level
-  std::vector<int> removed_begin_;      ///< CSR: neighbours of each vertex that levels_[0] dropped
+  /// Direction table: 6 cube faces x table_k_ x table_k_ cells, each the
+  /// support vertex of the cell's central direction.
+  int table_k_ = 0;
+  std::vector<int> table_;
+  std::vector<int> removed_begin_;  ///< CSR: neighbours of each vertex that levels_[0] dropped
   std::vector<int> removed_;
 };
 

@@ -298,22 +298,7 @@ PairScene buildScene(const PairSpec& spec, const Protocol& protocol, int pair_in
 }
 
 std::string describeQuery(const PairScene& scene, const Query& q) {
-  std::ostringstream out;
-  out.precision(17);
-  auto points = [&](const ConvexPolytope& p, const Eigen::Isometry3d& X) {
-    out << "[";
-    for (int v = 0; v < p.numVertices(); ++v) {
-      const Eigen::Vector3d w = X * p.vertex(v);
-      out << (v > 0 ? ", " : "") << "[" << w.x() << ", " << w.y() << ", " << w.z() << "]";
-    }
-    out << "]";
-  };
-  out << R"({"id": "repro", "a": )";
-  points(scene.a, q.X_WA);
-  out << R"(, "b": )";
-  points(scene.b, q.X_WB);
-  out << R"(, "direction": [)" << q.s_W.x() << ", " << q.s_W.y() << ", " << q.s_W.z() << "]}";
-  return out.str();
+  return toJsonLine(DirectionalInput{&scene.a, q.X_WA, &scene.b, q.X_WB, q.s_W});
 }
 
 }  // namespace mddual::bench

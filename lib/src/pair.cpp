@@ -77,24 +77,28 @@ Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query) {
   return (s / largest).normalized();
 }
 
-std::string describeQuery(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
-                          const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s_W) {
+}  // namespace mddual::detail
+
+namespace mddual {
+
+std::string toJsonLine(const DirectionalInput& input, const std::string& id) {
   std::ostringstream out;
   out.precision(17);
-  auto points = [&](const ConvexPolytope& p, const Eigen::Isometry3d& X) {
+  auto points = [&](const ConvexPolytope* p, const Eigen::Isometry3d& X) {
     out << "[";
-    for (int v = 0; v < p.numVertices(); ++v) {
-      const Eigen::Vector3d w = X * p.vertex(v);
+    for (int v = 0; p != nullptr && v < p->numVertices(); ++v) {
+      const Eigen::Vector3d w = X * p->vertex(v);
       out << (v > 0 ? ", " : "") << "[" << w.x() << ", " << w.y() << ", " << w.z() << "]";
     }
     out << "]";
   };
-  out << R"({"id": "repro", "a": )";
-  points(a, X_WA);
+  out << R"({"id": ")" << id << R"(", "a": )";
+  points(input.a, input.X_WA);
   out << R"(, "b": )";
-  points(b, X_WB);
-  out << R"(, "direction": [)" << s_W.x() << ", " << s_W.y() << ", " << s_W.z() << "]}";
+  points(input.b, input.X_WB);
+  const Eigen::Vector3d& s = input.s_W;
+  out << R"(, "direction": [)" << s.x() << ", " << s.y() << ", " << s.z() << "]}";
   return out.str();
 }
 
-}  // namespace mddual::detail
+}  // namespace mddual

@@ -81,9 +81,4 @@ class PairGeometry {
 /// names the caller in the error.
 Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query);
 
-/// Text of a query in a form that can be pasted into a test (JSON line of
-/// the CLI's format, in world coordinates, full precision).
-std::string describeQuery(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
-                          const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s_W);
-
 }  // namespace mddual::detail

@@ -224,7 +224,7 @@ void classify(const LineInterval& line, double tol, MddResult* r) {
 /// Re-throws an internal failure with the query attached, ready to paste.
 [[noreturn]] void rethrowWithQuery(const NumericalError& e, const ConvexPolytope* a, const Eigen::Isometry3d& X_WA,
                                    const ConvexPolytope* b, const Eigen::Isometry3d& X_WB, const Eigen::Vector3d& s_W) {
-  throw NumericalError(std::string(e.what()) + "\n  query: " + detail::describeQuery(*a, X_WA, *b, X_WB, s_W));
+  throw NumericalError(std::string(e.what()) + "\n  query: " + toJsonLine(DirectionalInput{a, X_WA, b, X_WB, s_W}));
 }
 
 bool lineMissesBall(const PairGeometry& pair, const Eigen::Vector3d& u_A) {

@@ -80,7 +80,7 @@ class QueryOracle {
       if (!ok) {
         ++failures;
         ADD_FAILURE() << "intersect: fast " << toString(fast.status) << " vs brute " << toString(ref.status)
-                      << "\n  query: " << detail::describeQuery(a, X_WA, b, X_WB, Eigen::Vector3d::UnitX());
+                      << "\n  query: " << toJsonLine(DirectionalInput{&a, X_WA, &b, X_WB, Eigen::Vector3d::UnitX()});
       }
     }
     for (const Eigen::Vector3d& s : directions) {
@@ -98,8 +98,7 @@ class QueryOracle {
         ++failures;
         ADD_FAILURE() << why.str() << "\n  fast: " << describe(fast) << "\n  brute: " << describe(ref)
                       << "\n  toi fast " << toString(fast_toi.status) << " " << fast_toi.toi << ", brute "
-                      << toString(ref_toi.status) << " " << ref_toi.toi
-                      << "\n  query: " << detail::describeQuery(a, X_WA, b, X_WB, s);
+                      << toString(ref_toi.status) << " " << ref_toi.toi << "\n  query: " << toJsonLine(in);
       }
     }
     return failures;

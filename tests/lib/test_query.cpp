@@ -210,6 +210,14 @@ TEST(Query, IntersectSeparatingNormalProvesSeparation) {
   EXPECT_LT(max_a, min_b);
 }
 
+TEST(Query, QueriesPrintThemselvesAsJsonLines) {
+  const ConvexPolytope tri = ConvexPolytope::fromPoints({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  const std::string line = toJsonLine(DirectionalInput{&tri, at(0, 0, 0), &tri, at(0.1, 0, 2), {0, 0, -1}}, "t1");
+  EXPECT_EQ(line.rfind(R"({"id": "t1", "a": [[)", 0), 0u);
+  EXPECT_NE(line.find("0.10000000000000001"), std::string::npos);  // 17 significant digits
+  EXPECT_NE(line.find(R"("direction": [0, 0, -1]})"), std::string::npos);
+}
+
 TEST(Query, InvalidInputsThrowOurErrors) {
   const ConvexPolytope& c = unitCube();
   auto message = [](auto&& call) -> std::string {

@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <limits>
+#include <string>
 
 #include "mddual/polytope.h"
 
@@ -206,5 +207,10 @@ ToiResult toi(const DirectionalInput& input, WarmStart* warm = nullptr);
 
 /// Collision test with early escape (paper section V).
 IntersectResult intersect(const IntersectInput& input, WarmStart* warm = nullptr);
+
+/// The query as one line of `mddual query`'s input format: both polytopes'
+/// vertices in the world frame and the direction, 17 significant digits, so
+/// a failing query can be pasted into a test or piped into the CLI.
+std::string toJsonLine(const DirectionalInput& input, const std::string& id = "repro");
 
 }  // namespace mddual

@@ -9,7 +9,8 @@ packages=(
   libeigen3-dev libqhull-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfcl-dev libccd-dev libbullet-dev
-  python3
+  libompl-dev ompl-demos liburdfdom-dev libassimp-dev
+  python3 python3-matplotlib
 )
 
 missing=()

@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfcl-dev libccd-dev libbullet-dev
   libompl-dev ompl-demos liburdfdom-dev libassimp-dev
+  libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   python3 python3-matplotlib
 )
 

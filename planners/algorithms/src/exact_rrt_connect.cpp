@@ -1,0 +1,186 @@
+#include "mddual/planning/exact_rrt_connect.h"
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/geometric/PathGeometric.h>
+#include <ompl/tools/config/SelfConfig.h>
+
+#include <algorithm>
+
+namespace mddual::planning {
+
+namespace ob = ompl::base;
+
+ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planner(si, "ExactRRTConnect") {
+  specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
+  specs_.directed = true;
+  Planner::declareParam<double>("range", this, &ExactRRTConnect::setRange, &ExactRRTConnect::getRange, "0.:1.:10000.");
+  Planner::declareParam<double>("min_progress", this, &ExactRRTConnect::setMinProgress,
+                                &ExactRRTConnect::getMinProgress, "0.:1e-6:0.1");
+}
+
+ExactRRTConnect::~ExactRRTConnect() {
+  freeTree(start_tree_);
+  freeTree(goal_tree_);
+}
+
+void ExactRRTConnect::setup() {
+  Planner::setup();
+  auto make = [this]() {
+    Tree tree(ompl::tools::SelfConfig::getDefaultNearestNeighbors<Motion*>(this));
+    tree->setDistanceFunction([this](const Motion* a, const Motion* b) { return distance(a, b); });
+    return tree;
+  };
+  if (!start_tree_) start_tree_ = make();
+  if (!goal_tree_) goal_tree_ = make();
+}
+
+void ExactRRTConnect::clear() {
+  Planner::clear();
+  sampler_.reset();
+  freeTree(start_tree_);
+  freeTree(goal_tree_);
+  connection_ = {nullptr, nullptr};
+}
+
+void ExactRRTConnect::freeTree(const Tree& tree) {
+  if (!tree) return;
+  std::vector<Motion*> motions;
+  tree->list(motions);
+  for (Motion* m : motions) {
+    si_->freeState(m->state);
+    delete m;
+  }
+  tree->clear();
+}
+
+double ExactRRTConnect::distance(const Motion* a, const Motion* b) const {
+  return si_->distance(a->state, b->state);
+}
+
+ExactRRTConnect::Motion* ExactRRTConnect::addMotion(const Tree& tree, Motion* parent, const ob::State* state) {
+  auto* m = new Motion;
+  m->state = si_->cloneState(state);
+  m->parent = parent;
+  m->root = parent != nullptr ? parent->root : m->state;
+  tree->add(m);
+  return m;
+}
+
+ExactRRTConnect::Extend ExactRRTConnect::extend(const Tree& tree, const ob::State* target, Motion** added) {
+  // 1. The nearest motion, and the target cut to `range` when one is set.
+  Motion probe;
+  probe.state = const_cast<ob::State*>(target);  // NearestNeighbors wants a Motion*; it is only read
+  Motion* nearest = tree->nearest(&probe);
+  const double d = si_->distance(nearest->state, target);
+  ob::State* cut = nullptr;
+  const ob::State* goal = target;
+  if (range_ > 0.0 && d > range_) {
+    cut = si_->allocState();
+    si_->getStateSpace()->interpolate(nearest->state, target, range_ / d, cut);
+    goal = cut;
+  }
+  // 2. One motion check; when blocked, the validator's last valid state
+  //    before the first contact.
+  ob::State* last = si_->allocState();
+  std::pair<ob::State*, double> last_valid(last, 0.0);
+  Extend result = Extend::kTrapped;
+  if (si_->checkMotion(nearest->state, goal, last_valid)) {
+    *added = addMotion(tree, nearest, goal);
+    result = cut == nullptr ? Extend::kReached : Extend::kAdvanced;
+  } else if (last_valid.second > 0.0 && si_->distance(nearest->state, last) > min_progress_ * si_->getMaximumExtent()) {
+    *added = addMotion(tree, nearest, last);
+    result = Extend::kAdvanced;
+  }
+  si_->freeState(last);
+  if (cut != nullptr) si_->freeState(cut);
+  return result;
+}
+
+ob::PlannerStatus ExactRRTConnect::solve(const ob::PlannerTerminationCondition& ptc) {
+  // 1. Set-up: start states, goal region, sampler.
+  checkValidity();
+  auto* goal = dynamic_cast<ob::GoalSampleableRegion*>(pdef_->getGoal().get());
+  if (goal == nullptr) {
+    OMPL_ERROR("%s: unknown type of goal", getName().c_str());
+    return ob::PlannerStatus::UNRECOGNIZED_GOAL_TYPE;
+  }
+  while (const ob::State* st = pis_.nextStart()) addMotion(start_tree_, nullptr, st);
+  if (start_tree_->size() == 0) {
+    OMPL_ERROR("%s: motion planning start tree could not be initialized", getName().c_str());
+    return ob::PlannerStatus::INVALID_START;
+  }
+  if (!goal->couldSample()) {
+    OMPL_ERROR("%s: insufficient states in sampleable goal region", getName().c_str());
+    return ob::PlannerStatus::INVALID_GOAL;
+  }
+  if (!sampler_) sampler_ = si_->allocStateSampler();
+  ob::State* sample = si_->allocState();
+  bool start_side = true;
+  bool solved = false;
+
+  // 2. Alternate: EXTEND one tree toward a random state, then CONNECT the
+  //    other tree to the new node (one exact edge: it reaches it or stops).
+  while (!ptc && !solved) {
+    if (goal_tree_->size() == 0 || pis_.getSampledGoalsCount() < goal_tree_->size() / 2) {
+      const ob::State* g = goal_tree_->size() == 0 ? pis_.nextGoal(ptc) : pis_.nextGoal();
+      if (g != nullptr) addMotion(goal_tree_, nullptr, g);
+      if (goal_tree_->size() == 0) {
+        OMPL_ERROR("%s: unable to sample any valid states for goal tree", getName().c_str());
+        break;
+      }
+    }
+    const Tree& tree = start_side ? start_tree_ : goal_tree_;
+    const Tree& other = start_side ? goal_tree_ : start_tree_;
+    sampler_->sampleUniform(sample);
+    Motion* added = nullptr;
+    if (extend(tree, sample, &added) != Extend::kTrapped) {
+      Motion* joined = nullptr;
+      if (extend(other, added->state, &joined) == Extend::kReached) {
+        Motion* from_start = start_side ? added : joined;
+        Motion* from_goal = start_side ? joined : added;
+        // 3. The path: start root ... from_start, then from_goal's ancestors
+        //    (from_goal itself is a copy of the joining state).
+        auto path = std::make_shared<ompl::geometric::PathGeometric>(si_);
+        std::vector<Motion*> chain;
+        for (Motion* m = from_start; m != nullptr; m = m->parent) chain.push_back(m);
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) path->append((*it)->state);
+        for (Motion* m = from_goal->parent; m != nullptr; m = m->parent) path->append(m->state);
+        connection_ = {from_start->state, from_goal->state};
+        pdef_->addSolutionPath(path, false, 0.0, getName());
+        solved = true;
+      }
+    }
+    start_side = !start_side;
+  }
+  si_->freeState(sample);
+  OMPL_INFORM("%s: created %u states (%u start + %u goal)", getName().c_str(), start_tree_->size() + goal_tree_->size(),
+              start_tree_->size(), goal_tree_->size());
+  return solved ? ob::PlannerStatus::EXACT_SOLUTION : ob::PlannerStatus::TIMEOUT;
+}
+
+void ExactRRTConnect::getPlannerData(ob::PlannerData& data) const {
+  Planner::getPlannerData(data);
+  auto add = [&](const Tree& tree, bool start) {
+    if (!tree) return;
+    std::vector<Motion*> motions;
+    tree->list(motions);
+    for (const Motion* m : motions) {
+      if (m->parent == nullptr) {
+        start ? data.addStartVertex(ob::PlannerDataVertex(m->state, 1))
+              : data.addGoalVertex(ob::PlannerDataVertex(m->state, 2));
+      } else if (start) {
+        data.addEdge(ob::PlannerDataVertex(m->parent->state, 1), ob::PlannerDataVertex(m->state, 1));
+      } else {
+        data.addEdge(ob::PlannerDataVertex(m->state, 2), ob::PlannerDataVertex(m->parent->state, 2));
+      }
+    }
+  };
+  add(start_tree_, true);
+  add(goal_tree_, false);
+  if (connection_.first != nullptr) {
+    data.addEdge(ob::PlannerDataVertex(connection_.first, 1), ob::PlannerDataVertex(connection_.second, 2));
+  }
+}
+
+}  // namespace mddual::planning

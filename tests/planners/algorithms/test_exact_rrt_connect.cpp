@@ -1,0 +1,111 @@
+// ExactRRTConnect on a plain OMPL problem: a square with a wall and one gap,
+// OMPL's own DiscreteMotionValidator at a fine resolution. It must solve it,
+// return a valid path, and grow its trees up to obstacles (the point of
+// extending to the first contact).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "mddual/planning/exact_rrt_connect.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+/// [0,10]^2 with a wall x in [4.9, 5.1] except for the gap y in [8, 9].
+bool free(const ob::State* s) {
+  const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+  const double x = v->values[0];
+  const double y = v->values[1];
+  return !(x >= 4.9 && x <= 5.1 && !(y >= 8.0 && y <= 9.0));
+}
+
+og::SimpleSetup makeSetup() {
+  auto space = std::make_shared<ob::RealVectorStateSpace>(2);
+  space->setBounds(0.0, 10.0);
+  og::SimpleSetup ss(space);
+  ss.setStateValidityChecker(free);
+  ss.getSpaceInformation()->setStateValidityCheckingResolution(0.001);
+  ob::ScopedState<> start(space);
+  ob::ScopedState<> goal(space);
+  start[0] = 1.0;
+  start[1] = 1.0;
+  goal[0] = 9.0;
+  goal[1] = 1.0;
+  ss.setStartAndGoalStates(start, goal);
+  return ss;
+}
+
+TEST(ExactRRTConnect, SolvesThroughTheGapWithAValidPath) {
+  ompl::RNG::setSeed(42);
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  ss.setPlanner(planner);
+  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  og::PathGeometric& path = ss.getSolutionPath();
+  EXPECT_TRUE(path.check());
+  // Re-check every segment densely: no point of the path is in the wall.
+  for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i) {
+    ob::State* s = ss.getSpaceInformation()->allocState();
+    for (int k = 0; k <= 2000; ++k) {
+      ss.getStateSpace()->interpolate(path.getState(i), path.getState(i + 1), k / 2000.0, s);
+      EXPECT_TRUE(free(s)) << "segment " << i << " at " << k / 2000.0;
+    }
+    ss.getSpaceInformation()->freeState(s);
+  }
+  const auto* first = path.getState(0)->as<ob::RealVectorStateSpace::StateType>();
+  const auto* last = path.getState(path.getStateCount() - 1)->as<ob::RealVectorStateSpace::StateType>();
+  EXPECT_NEAR(first->values[0], 1.0, 1e-12);
+  EXPECT_NEAR(last->values[0], 9.0, 1e-12);
+}
+
+TEST(ExactRRTConnect, ExtensionsStopAtTheWall) {
+  // Blocked extensions keep the part up to the first contact: some tree
+  // nodes end within the validator's resolution of the wall's faces.
+  ompl::RNG::setSeed(7);
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  ss.setPlanner(planner);
+  ss.solve(5.0);
+  ob::PlannerData data(ss.getSpaceInformation());
+  planner->getPlannerData(data);
+  int at_wall = 0;
+  for (unsigned i = 0; i < data.numVertices(); ++i) {
+    const double x = data.getVertex(i).getState()->as<ob::RealVectorStateSpace::StateType>()->values[0];
+    if (std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01) ++at_wall;
+  }
+  EXPECT_GT(at_wall, 0);
+}
+
+TEST(ExactRRTConnect, RangeLimitsExtensions) {
+  ompl::RNG::setSeed(3);
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  planner->setRange(0.5);
+  ss.setPlanner(planner);
+  ASSERT_EQ(ss.solve(10.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ob::PlannerData data(ss.getSpaceInformation());
+  planner->getPlannerData(data);
+  // Every tree edge (not the final joining edge) is at most `range` long.
+  int longer = 0;
+  for (unsigned i = 0; i < data.numVertices(); ++i) {
+    std::vector<unsigned> out;
+    data.getEdges(i, out);
+    for (unsigned j : out) {
+      if (ss.getSpaceInformation()->distance(data.getVertex(i).getState(), data.getVertex(j).getState()) > 0.5 + 1e-9) {
+        ++longer;
+      }
+    }
+  }
+  EXPECT_LE(longer, 1);
+}
+
+}  // namespace
+}  // namespace mddual::planning

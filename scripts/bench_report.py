@@ -1,0 +1,185 @@
+#!/usr/bin/env python3
+"""Summary table and plots of an mddual benchmark database.
+
+The database is the one `ompl_benchmark_statistics` builds from the OMPL
+benchmark logs that `mddual bench` writes (one log per checker and shard).
+Runs are grouped by config, planner and checker (experiment parameters
+`config` and `checker`, set by `mddual bench`), so the logs of several
+shards merge here.
+
+    scripts/bench_report.py --db out/bench/bench.db [--plots DIR] [--markdown FILE]
+
+Per planner and checker: runs, success rate (exact solutions whose path the
+strict verification found collision-free, over all runs), median solve time
+over all runs (unsolved runs count at the time limit), the time ratio against
+FCL's discrete checker on the same planner, the median number of state and
+motion checks, and the number of invalid solutions (solved, but the strict
+verification found a collision on the path). Python standard library, plus
+matplotlib (Debian's python3-matplotlib) for the plots.
+"""
+
+import argparse
+import math
+import os
+import sqlite3
+import sys
+
+CHECKER_ORDER = ["mdd", "fcl", "fcl-continuous"]
+
+
+def median(values):
+    values = sorted(v for v in values if v is not None)
+    if not values:
+        return float("nan")
+    n = len(values)
+    return values[n // 2] if n % 2 else 0.5 * (values[n // 2 - 1] + values[n // 2])
+
+
+def columns(db, table):
+    return {row[1] for row in db.execute("pragma table_info(%s)" % table)}
+
+
+def load(db_path):
+    """Rows: dict per run with config, checker, planner and the run's fields."""
+    db = sqlite3.connect(db_path)
+    exp_cols = columns(db, "experiments")
+    run_cols = columns(db, "runs")
+    for needed in ("config", "checker"):
+        if needed not in exp_cols:
+            raise SystemExit("bench_report: %s: experiments have no '%s' parameter (not written by mddual bench?)"
+                             % (db_path, needed))
+    wanted = ["time", "solved", "approximate_solution", "state_checks", "motion_checks", "pair_queries",
+              "checking_time", "invalid_solution", "verified"]
+    present = [c for c in wanted if c in run_cols]
+    query = ("select e.config, e.checker, e.timelimit, p.name, %s from runs r "
+             "join experiments e on r.experimentid = e.id join plannerConfigs p on r.plannerid = p.id"
+             % ", ".join("r." + c for c in present))
+    rows = []
+    for rec in db.execute(query):
+        row = {"config": rec[0], "checker": rec[1], "timelimit": rec[2], "planner": rec[3].replace("geometric_", "")}
+        row.update(dict(zip(present, rec[4:])))
+        rows.append(row)
+    return rows
+
+
+def summarise(rows):
+    groups = {}
+    for r in rows:
+        groups.setdefault((r["config"], r["planner"], r["checker"]), []).append(r)
+    stats = {}
+    for key, runs in groups.items():
+        limit = runs[0]["timelimit"]
+        exact = [r for r in runs if r.get("solved") and not r.get("approximate_solution")]
+        invalid = [r for r in exact if r.get("invalid_solution")]
+        good = len(exact) - len(invalid)
+        times = [r["time"] if (r.get("solved") and not r.get("approximate_solution")) else limit for r in runs]
+        stats[key] = {
+            "runs": len(runs),
+            "success": good / len(runs),
+            "median_time": median(times),
+            "state_checks": median([r.get("state_checks") for r in runs]),
+            "motion_checks": median([r.get("motion_checks") for r in runs]),
+            "invalid": len(invalid),
+            "solved": len(exact),
+        }
+    for (config, planner, checker), s in stats.items():
+        fcl = stats.get((config, planner, "fcl"))
+        s["ratio"] = s["median_time"] / fcl["median_time"] if fcl and fcl["median_time"] > 0 else float("nan")
+    return stats
+
+
+def fmt(x, digits=3):
+    if x is None or (isinstance(x, float) and math.isnan(x)):
+        return "-"
+    if isinstance(x, float):
+        return "%.*g" % (digits, x)
+    return str(x)
+
+
+def markdown(stats):
+    lines = ["| config | planner | checker | runs | success | median time (s) | time / FCL | state checks | "
+             "motion checks | invalid solutions |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+
+    def order(key):
+        config, planner, checker = key
+        rank = CHECKER_ORDER.index(checker) if checker in CHECKER_ORDER else len(CHECKER_ORDER)
+        return (config, planner, rank, checker)
+
+    for key in sorted(stats, key=order):
+        s = stats[key]
+        lines.append("| %s | %s | %s | %d | %.0f%% | %s | %s | %s | %s | %d |" % (
+            key[0], key[1], key[2], s["runs"], 100 * s["success"], fmt(s["median_time"]), fmt(s["ratio"], 2),
+            fmt(s["state_checks"], 4), fmt(s["motion_checks"], 4), s["invalid"]))
+    return "\n".join(lines) + "\n"
+
+
+def plot(rows, stats, out_dir):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    os.makedirs(out_dir, exist_ok=True)
+    written = []
+    for config in sorted({k[0] for k in stats}):
+        planners = sorted({k[1] for k in stats if k[0] == config})
+        checkers = [c for c in CHECKER_ORDER if any(k[0] == config and k[2] == c for k in stats)]
+        checkers += sorted({k[2] for k in stats if k[0] == config} - set(checkers))
+        fig, axes = plt.subplots(2, 2, figsize=(12, 8))
+        width = 0.8 / max(1, len(checkers))
+        for ci, checker in enumerate(checkers):
+            xs = [i + (ci - (len(checkers) - 1) / 2) * width for i in range(len(planners))]
+            times = [[r["time"] if r.get("solved") else r["timelimit"] for r in rows
+                      if r["config"] == config and r["planner"] == p and r["checker"] == checker] for p in planners]
+            box = axes[0][0].boxplot(times, positions=xs, widths=width * 0.9, patch_artist=True, showfliers=False)
+            for patch in box["boxes"]:
+                patch.set_facecolor("C%d" % ci)
+            get = lambda field: [stats.get((config, p, checker), {}).get(field, 0) or 0 for p in planners]
+            axes[0][1].bar(xs, [100 * v for v in get("success")], width, color="C%d" % ci, label=checker)
+            axes[1][0].bar(xs, get("state_checks"), width, color="C%d" % ci)
+            axes[1][1].bar(xs, get("invalid"), width, color="C%d" % ci)
+        titles = ["solve time (s; unsolved at the limit)", "success rate (%, verified)", "state checks (median)",
+                  "invalid solutions (count)"]
+        for ax, title in zip(axes.flat, titles):
+            ax.set_title(title)
+            ax.set_xticks(range(len(planners)))
+            ax.set_xticklabels(planners, rotation=20)
+        most_invalid = max([stats[k]["invalid"] for k in stats if k[0] == config] + [0])
+        axes[1][1].set_ylim(0, max(1, most_invalid) * 1.15)
+        axes[0][0].set_yscale("log")
+        axes[1][0].set_yscale("symlog")
+        axes[0][1].legend(title="checker")
+        fig.suptitle("%s: checkers compared per planner" % config)
+        fig.tight_layout()
+        path = os.path.join(out_dir, "%s.png" % config)
+        fig.savefig(path, dpi=90)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--db", required=True, help="database built by ompl_benchmark_statistics")
+    parser.add_argument("--plots", help="folder for the PNG plots (one per config)")
+    parser.add_argument("--markdown", help="write the summary table there too")
+    args = parser.parse_args()
+    if not os.path.exists(args.db):
+        raise SystemExit("bench_report: no database '%s'" % args.db)
+    rows = load(args.db)
+    if not rows:
+        raise SystemExit("bench_report: '%s' holds no runs" % args.db)
+    stats = summarise(rows)
+    table = markdown(stats)
+    sys.stdout.write(table)
+    if args.markdown:
+        with open(args.markdown, "w") as f:
+            f.write(table)
+    if args.plots:
+        for path in plot(rows, stats, args.plots):
+            print("plot: %s" % path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

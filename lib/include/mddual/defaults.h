@@ -78,3 +78,46 @@ inline constexpr int kMaxSearchSteps = 100000;
 inline constexpr double kCentreMinWeight = 1e-3;
 
 }  // namespace mddual::defaults
+
+// ---- Penetration depth, width, polyhedral metrics (penetration.h) ---------------
+
+namespace mddual::defaults {
+
+// Default accuracy parameter of the (1 + delta)-approximate penetration depth
+// (Approx-Separation). Dimensionless. The grid has about 2 pi / delta
+// directions (one ray shot each): about 60 at 0.1.
+inline constexpr double kApproxPdDelta = 0.1;
+
+// Default delta of the shallow-penetration method. It trades the grid of its
+// first phase (an approximation with delta / 4: about 8 pi / delta
+// directions) against the breadth-first search over the facets of M within
+// (1 + delta / 2) times the estimate. Dimensionless.
+inline constexpr double kShallowPdDelta = 0.5;
+
+// Range accepted for delta. Below kMinPdDelta the grid would exceed ~60,000
+// directions for kApprox (a quarter of that delta for kShallow); above
+// kMaxPdDelta the bound (1 + delta) says nothing useful. Dimensionless.
+inline constexpr double kMinPdDelta = 1e-4;
+inline constexpr double kMaxPdDelta = 1e3;
+
+// Exact penetration depth, Gaussian-map walk: a vertex region of -B that is
+// left "behind" the current point by more than this fraction of the edge
+// length (x . (b_w - b_v) < -slack |b_w - b_v|, x a unit normal) means the
+// walk lost track of the region, which exact arithmetic never does; the arc
+// is then redone by testing it against every edge of B. Round-off in x . d is
+// ~1e-16 |d|, so this only fires on a real inconsistency.
+inline constexpr double kPdWalkSlackRel = 1e-10;
+
+// Exact penetration depth, Gaussian-map walk: an arc of A (a great-circle
+// arc of at most a half circle) enters each convex vertex region of -B at
+// most once, so the walk along it takes at most |V(B)| steps; it is cut at
+// |V(B)| + kPdWalkExtraSteps (round-off cycling between tied regions) and the
+// arc redone by testing.
+inline constexpr int kPdWalkExtraSteps = 16;
+
+// A polyhedral metric K must be centrally symmetric about the origin: every
+// vertex v needs a vertex within kMetricSymmetryRel * (largest |v|) of -v.
+// Dimensionless; loose enough for coordinates printed with 10 digits.
+inline constexpr double kMetricSymmetryRel = 1e-9;
+
+}  // namespace mddual::defaults

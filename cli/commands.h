@@ -32,4 +32,10 @@ void registerQueryCommand(CLI::App& app);
 /// `mddual demo`: a few generated scenes answered by MDD-DUAL and by brute force.
 void registerDemoCommand(CLI::App& app);
 
+/// `mddual pd`: penetration depth (exact, shallow, approximate, polyhedral metric) per JSON line.
+void registerPdCommand(CLI::App& app);
+
+/// `mddual width`: width of a polytope per JSON line.
+void registerWidthCommand(CLI::App& app);
+
 }  // namespace mddual::cli

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   mddual::cli::registerQueryCommand(app);
   mddual::cli::registerDemoCommand(app);
+  mddual::cli::registerPdCommand(app);
+  mddual::cli::registerWidthCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,119 @@
+// Scene loaders: URDF files (urdfdom), meshes (assimp) and the primitive
+// shapes they contain, turned into the convex pieces of scene.h.
+//
+// Frames: a body's pieces are in its body frame R (for a URDF, the root
+// link's frame; for a mesh file, the file's frame, optionally shifted so that
+// the mean vertex is the origin); a world's pieces are in the world frame W
+// (a URDF world's root link frame, a mesh world's file frame). The builders
+// below take the pose X_OS of the shape's own frame S in the owner frame O
+// (R or W) and return pieces in O.
+//
+// Conventions shared with OMPL.app, so that its meshes give the same geometry:
+//   - assimp reads meshes with aiProcess_GenNormals | aiProcess_Triangulate |
+//     aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+//     aiProcess_OptimizeGraph, and every node's transform (accumulated from
+//     the root) is applied to its meshes. For COLLADA files this includes the
+//     rotation assimp puts on the root node to convert a Z_UP (or X_UP) file
+//     to Y-up: a Z_UP point (x, y, z) is read as (x, z, -y).
+//   - only faces with three indices are geometry (lines and points are not),
+//     but the mean vertex (for recentring) is taken over every vertex of every
+//     mesh the node tree references, as OMPL.app's sceneCenter does.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mddual/scene/scene.h"
+
+namespace mddual::scene {
+
+struct LoadOptions {
+  /// Curved primitives (cylinders, spheres) become circumscribed polytopes
+  /// whose surface is within this distance of the true surface (world units,
+  /// > 0).
+  double primitive_tolerance = 1e-3;
+  /// A non-convex mesh becomes its convex hull (one piece) instead of its
+  /// triangles.
+  bool mesh_convex_hull = false;
+  /// loadBody and meshPieces: shift a mesh so that the mean of its vertices is
+  /// the origin (OMPL.app's robot convention: the state is the pose of that
+  /// point). Worlds and meshes inside a URDF are never shifted.
+  bool recentre_mesh = false;
+};
+
+/// What meshPieces found in a mesh file.
+struct MeshInfo {
+  int vertices = 0;              ///< vertices of the meshes referenced by the node tree
+  int triangles = 0;             ///< triangles read
+  int degenerate_triangles = 0;  ///< zero-area (or collinear) triangles skipped
+  bool convex = false;           ///< the mesh equals its convex hull (one kConvex piece)
+  /// Mean of the vertices, scaled, in the mesh file's frame (before the shift
+  /// of recentring and before X_OM).
+  Eigen::Vector3d mean_vertex = Eigen::Vector3d::Zero();
+  /// The shift applied before X_OM (mean_vertex when recentred, else zero).
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+};
+
+/// Loads a robot: a URDF (.urdf, every collision element of every link, the
+/// joints taken as fixed at their origins) or a mesh file (any format assimp
+/// reads: .stl .obj .dae .ply ...). Pieces are in the body frame R (the URDF's
+/// root link frame, or the mesh file's frame shifted by -mean vertex when
+/// options.recentre_mesh). Throws SceneError naming the file and the element
+/// when the file is unreadable, malformed, unsupported or has no collision
+/// geometry.
+RigidBody loadBody(const std::filesystem::path& file, const LoadOptions& options = {});
+
+/// Loads a static world (URDF or mesh file, as loadBody but never recentred);
+/// pieces in the world frame W. A URDF world without collision geometry is an
+/// empty (free) world; a mesh file must contain triangles.
+World loadWorld(const std::filesystem::path& file, const LoadOptions& options = {});
+
+/// The pieces of a mesh file in the owner frame O: every vertex v of the file
+/// (node transforms applied) becomes X_OM * (scale .* v - shift), where shift
+/// is the mean of the scaled vertices when options.recentre_mesh, else zero.
+/// A mesh equal to its convex hull (every triangle lies in a supporting plane
+/// of the hull, within 1e-6 of the mesh's bounding-box diagonal plus 5e-7 of
+/// its largest coordinate, since assimp stores floats; and the triangles'
+/// total area is the hull's surface area within a relative 1e-5) is one
+/// kConvex piece; any other mesh is one kTriangle piece per non-degenerate
+/// triangle (a triangle whose height is below 1e-10 of its longest edge is
+/// degenerate, skipped and counted), or its hull (kConvex) when
+/// options.mesh_convex_hull. Piece::origin is "<file name>: triangle i" (i
+/// counts the file's triangles from 0)
+/// or "<file name>: convex". Throws SceneError (naming the file and assimp's
+/// error) for a missing, unreadable or unsupported file, a file without
+/// triangles, or one whose triangles are all degenerate.
+std::vector<Piece> meshPieces(const std::filesystem::path& file, const Eigen::Vector3d& scale,
+                              const Eigen::Isometry3d& X_OM, const LoadOptions& options, MeshInfo* info = nullptr);
+
+/// The mean of a mesh file's vertices in its own frame (node transforms
+/// applied, no scale): OMPL.app's robot centre. Throws as meshPieces.
+Eigen::Vector3d meshMeanVertex(const std::filesystem::path& file);
+
+/// A box with full side lengths `size` (all > 0), centred on the origin of
+/// its frame B, posed at X_OB: one kConvex piece with 8 vertices, frame O.
+Piece boxPiece(const Eigen::Vector3d& size, const Eigen::Isometry3d& X_OB, std::string origin);
+
+/// A cylinder of `radius` along the z axis of its frame C, from z = -length/2
+/// to +length/2, posed at X_OC. Circumscribed: a prism over the regular
+/// k-gon whose edges touch the circle (vertices at radius / cos(pi/k)), with
+/// the fewest k >= 8 such that radius / cos(pi/k) - radius <= tolerance. The
+/// caps are exact. One kConvex piece (2k vertices), frame O.
+Piece cylinderPiece(double radius, double length, const Eigen::Isometry3d& X_OC, double tolerance, std::string origin);
+
+/// A sphere of `radius` centred on the origin of its frame S, posed at X_OS.
+/// Circumscribed: a geodesic polyhedron (each icosahedron face cut into n^2
+/// triangles, points projected to the unit sphere), scaled by radius / d, d
+/// the smallest distance from the centre to a face plane of its hull, so that
+/// every face plane is at distance >= radius; n is the smallest frequency for
+/// which the vertices (at radius / d) are within `tolerance` of the sphere.
+/// One kConvex piece (10 n^2 + 2 vertices), frame O.
+Piece spherePiece(double radius, const Eigen::Isometry3d& X_OS, double tolerance, std::string origin);
+
+/// Sides k of cylinderPiece's prism for this radius and tolerance (throws
+/// SceneError above 20000: the tolerance is too small for the radius).
+int cylinderSides(double radius, double tolerance);
+
+}  // namespace mddual::scene

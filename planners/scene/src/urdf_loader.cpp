@@ -1,0 +1,185 @@
+// URDF files through urdfdom: every collision element of every link, at the
+// link's pose with all joints fixed at their origins.
+#include <console_bridge/console.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cctype>
+#include <mutex>
+#include <sstream>
+
+#include "mddual/scene/loaders.h"
+#include "scene_detail.h"
+
+namespace mddual::scene::detail {
+namespace {
+
+/// Collects urdfdom's console_bridge messages while a file is parsed, so the
+/// SceneError can say what the parser objected to (and stderr stays quiet).
+class CaptureHandler : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char* /*filename*/, int /*line*/) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+      if (!messages_.empty()) messages_ += "; ";
+      messages_ += text;
+    }
+  }
+  const std::string& messages() const { return messages_; }
+
+ private:
+  std::string messages_;
+};
+
+/// console_bridge's handler is process-wide: one parse at a time.
+std::mutex& parseMutex() {
+  static std::mutex m;
+  return m;
+}
+
+urdf::ModelInterfaceSharedPtr parse(const std::filesystem::path& file) {
+  std::lock_guard<std::mutex> lock(parseMutex());
+  CaptureHandler capture;
+  console_bridge::OutputHandler* previous = console_bridge::getOutputHandler();
+  console_bridge::useOutputHandler(&capture);
+  urdf::ModelInterfaceSharedPtr model;
+  std::string exception;
+  try {
+    model = urdf::parseURDFFile(file.string());
+  } catch (const std::exception& e) {
+    exception = e.what();
+  }
+  console_bridge::useOutputHandler(previous);
+  // urdfdom drops an element it cannot parse (an unknown geometry such as a
+  // capsule, a mesh without filename, a malformed vector), logs an error and
+  // still returns a model: any logged error is a failure here.
+  if (!model || !capture.messages().empty()) {
+    std::string why = capture.messages();
+    if (!exception.empty()) why += (why.empty() ? "" : "; ") + exception;
+    if (why.empty()) why = "urdfdom rejected it";
+    throw SceneError(display(file) + ": not a valid URDF (" + why + ")");
+  }
+  return model;
+}
+
+Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  Eigen::Quaterniond q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  if (!(q.norm() > 0.0)) q = Eigen::Quaterniond::Identity();
+  X.linear() = q.normalized().toRotationMatrix();
+  return X;
+}
+
+/// A mesh filename resolved against the URDF's folder; file:// is stripped,
+/// package:// and other URI schemes are refused.
+std::filesystem::path meshPath(const std::string& filename, const std::filesystem::path& urdf_dir) {
+  if (filename.empty()) throw SceneError("mesh without a filename");
+  std::string name = filename;
+  const std::string file_scheme = "file://";
+  if (name.rfind(file_scheme, 0) == 0) {
+    name = name.substr(file_scheme.size());
+  } else if (name.rfind("package://", 0) == 0) {
+    throw SceneError("mesh " + quote(filename) + ": package:// URIs are not supported (give a path relative to " +
+                     "the URDF's folder, or a file:// URI)");
+  } else {
+    const std::size_t colon = name.find("://");
+    if (colon != std::string::npos) {
+      throw SceneError("mesh " + quote(filename) + ": URI scheme " + quote(name.substr(0, colon)) +
+                       " is not supported");
+    }
+  }
+  std::filesystem::path p(name);
+  return p.is_absolute() ? p : urdf_dir / p;
+}
+
+/// Pieces of one collision element, in the root frame; X_RL is the link's pose.
+void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_RL,
+                  const std::filesystem::path& urdf_dir, const LoadOptions& options, const std::string& where,
+                  std::vector<Piece>* out) {
+  if (!collision.geometry) throw SceneError(where + ": no geometry");
+  const Eigen::Isometry3d X_RG = X_RL * toIsometry(collision.origin);
+  const double tol = options.primitive_tolerance;
+  switch (collision.geometry->type) {
+    case urdf::Geometry::BOX: {
+      const auto& box = static_cast<const urdf::Box&>(*collision.geometry);
+      out->push_back(boxPiece(Eigen::Vector3d(box.dim.x, box.dim.y, box.dim.z), X_RG, where + " (box)"));
+      return;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& cyl = static_cast<const urdf::Cylinder&>(*collision.geometry);
+      out->push_back(cylinderPiece(cyl.radius, cyl.length, X_RG, tol, where + " (cylinder)"));
+      return;
+    }
+    case urdf::Geometry::SPHERE: {
+      const auto& sphere = static_cast<const urdf::Sphere&>(*collision.geometry);
+      out->push_back(spherePiece(sphere.radius, X_RG, tol, where + " (sphere)"));
+      return;
+    }
+    case urdf::Geometry::MESH: {
+      const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
+      std::filesystem::path path;
+      try {
+        path = meshPath(mesh.filename, urdf_dir);
+      } catch (const SceneError& e) {
+        throw SceneError(where + ": " + e.what());
+      }
+      const Eigen::Vector3d scale(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+      LoadOptions mesh_options = options;
+      mesh_options.recentre_mesh = false;  // a URDF places its meshes itself
+      std::vector<Piece> pieces;
+      try {
+        pieces = meshPiecesWithOrigin(path, scale, X_RG, mesh_options, where + " (mesh " + quote(mesh.filename) + ")",
+                                      nullptr);
+      } catch (const SceneError& e) {
+        throw SceneError(where + ": mesh " + quote(mesh.filename) + ": " + e.what());
+      }
+      for (Piece& p : pieces) out->push_back(std::move(p));
+      return;
+    }
+  }
+  throw SceneError(where + ": unsupported geometry type");
+}
+
+}  // namespace
+
+bool isUrdf(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".urdf";
+}
+
+std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name) {
+  requireFile(file);
+  requirePositiveTolerance(options.primitive_tolerance, display(file));
+  const urdf::ModelInterfaceSharedPtr model = parse(file);
+  if (robot_name != nullptr) *robot_name = model->getName();
+  const urdf::LinkConstSharedPtr root = model->getRoot();
+  if (!root) throw SceneError(display(file) + ": no root link");
+  const std::filesystem::path dir = file.parent_path();
+  const std::string name = file.filename().string();
+
+  // Depth-first from the root, composing joint origins (joints at zero).
+  std::vector<Piece> pieces;
+  std::vector<std::pair<urdf::LinkConstSharedPtr, Eigen::Isometry3d>> stack = {{root, Eigen::Isometry3d::Identity()}};
+  while (!stack.empty()) {
+    const auto [link, X_RL] = stack.back();
+    stack.pop_back();
+    for (std::size_t i = 0; i < link->collision_array.size(); ++i) {
+      const std::string where = name + ": link " + quote(link->name) + ", collision " + std::to_string(i);
+      if (!link->collision_array[i]) continue;
+      addCollision(*link->collision_array[i], X_RL, dir, options, where, &pieces);
+    }
+    for (const urdf::JointSharedPtr& joint : link->child_joints) {
+      const urdf::LinkConstSharedPtr child = model->getLink(joint->child_link_name);
+      if (!child) {
+        throw SceneError(display(file) + ": joint " + quote(joint->name) + ": child link " +
+                         quote(joint->child_link_name) + " not found");
+      }
+      stack.emplace_back(child, X_RL * toIsometry(joint->parent_to_joint_origin_transform));
+    }
+  }
+  return pieces;
+}
+
+}  // namespace mddual::scene::detail

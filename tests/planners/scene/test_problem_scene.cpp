@@ -1,0 +1,152 @@
+// loadProblemScene: OMPL.app's robot recentring (z kept in the plane), the
+// bounds (volume, or the world's box widened to hold start and goal), poses,
+// and errors that name the cfg and the file.
+#include <gtest/gtest.h>
+
+#include "mddual/scene/problem_config.h"
+#include "scene_test_util.h"
+
+namespace mddual::scene {
+namespace {
+
+using testing::asciiStl;
+using testing::boxTriangles;
+using testing::expectSceneError;
+using testing::TempDir;
+
+void expectBox(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  EXPECT_LE((box.min() - lo).cwiseAbs().maxCoeff(), 1e-9) << box.min().transpose() << " vs " << lo.transpose();
+  EXPECT_LE((box.max() - hi).cwiseAbs().maxCoeff(), 1e-9) << box.max().transpose() << " vs " << hi.transpose();
+}
+
+/// Robot: a box mesh [2,4]x[1,3]x[1,2] (mean vertex (3, 2, 1.5)); world: a
+/// URDF box 10 x 10 x 1 centred at (0, 0, 0.5).
+void writeAssets(const TempDir& dir) {
+  dir.write("assets/robot.stl", asciiStl(boxTriangles({2, 1, 1}, {4, 3, 2})));
+  dir.write("assets/world.urdf", R"(<robot name="floor"><link name="slab">
+    <collision><origin xyz="0 0 0.5"/><geometry><box size="10 10 1"/></geometry></collision>
+  </link></robot>)");
+  dir.write("assets/arm.urdf", R"(<robot name="arm"><link name="base">
+    <collision><origin xyz="0 0 1"/><geometry><box size="1 1 2"/></geometry></collision>
+  </link></robot>)");
+}
+
+const char* kPlanar = R"([problem]
+robot = assets/robot.stl
+world = assets/world.urdf
+start.x = 0.5
+start.y = -1.25
+start.theta = 0.5
+goal.x = 40
+goal.y = 3.5
+goal.theta = 0.5
+)";
+
+TEST(ProblemScene, PlanarMeshRobotIsRecentredInXYOnly) {
+  TempDir dir;
+  writeAssets(dir);
+  const ProblemConfig c = readProblemConfig(dir.write("planar.cfg", kPlanar));
+  const ProblemScene s = loadProblemScene(c);
+  EXPECT_EQ(s.space, SpaceKind::kSE2);
+  EXPECT_TRUE(s.robot_shift.isApprox(Eigen::Vector3d(3, 2, 0)));
+  expectBox(s.robot.box(), {-1, -1, 1}, {1, 1, 2});  // z not shifted (OMPL.app zeroes the centre's z in 2D)
+  expectBox(s.world.box(), {-5, -5, 0}, {5, 5, 1});
+  // No volume: the world's box widened to hold start and goal; z = [0, 0].
+  expectBox(s.bounds, {-5, -5, 0}, {40, 5, 0});
+  EXPECT_TRUE(s.start.translation().isApprox(Eigen::Vector3d(0.5, -1.25, 0)));
+  EXPECT_TRUE(s.start.linear().isApprox(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix()));
+  EXPECT_TRUE(s.goal.translation().isApprox(Eigen::Vector3d(40, 3.5, 0)));
+}
+
+TEST(ProblemScene, TranslationOnlyPlanar) {
+  TempDir dir;
+  writeAssets(dir);
+  const ProblemConfig c = readProblemConfig(dir.write("t.cfg", std::string(kPlanar) + "translation_only = on\n"));
+  const ProblemScene s = loadProblemScene(c);
+  EXPECT_EQ(s.space, SpaceKind::kR2);
+  EXPECT_TRUE(s.goal.linear().isApprox(s.start.linear()));
+  expectBox(s.bounds, {-5, -5, 0}, {40, 5, 0});
+}
+
+TEST(ProblemScene, SpatialMeshRobotIsRecentredOnItsMeanVertex) {
+  TempDir dir;
+  writeAssets(dir);
+  const auto cfg = dir.write("spatial.cfg", R"([problem]
+robot = assets/robot.stl
+world = assets/robot.stl
+start.x = 1
+start.y = 2
+start.z = 3
+start.axis.x = 0
+start.axis.y = 1
+start.axis.z = 0
+start.theta = 1.0
+goal.x = -1
+goal.y = -2
+goal.z = 30
+goal.axis.x = 0
+goal.axis.y = 1
+goal.axis.z = 0
+goal.theta = 1.0
+translation_only = true
+)");
+  const ProblemScene s = loadProblemScene(readProblemConfig(cfg));
+  EXPECT_EQ(s.space, SpaceKind::kR3);
+  EXPECT_TRUE(s.robot_shift.isApprox(Eigen::Vector3d(3, 2, 1.5)));
+  expectBox(s.robot.box(), {-1, -1, -0.5}, {1, 1, 0.5});
+  expectBox(s.world.box(), {2, 1, 1}, {4, 3, 2});  // the world is not shifted
+  expectBox(s.bounds, {-1, -2, 1}, {4, 3, 30});
+  EXPECT_TRUE(s.start.linear().isApprox(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()).toRotationMatrix()));
+}
+
+TEST(ProblemScene, UrdfRobotAndVolume) {
+  TempDir dir;
+  writeAssets(dir);
+  const auto cfg = dir.write("urdf.cfg", R"([problem]
+robot = assets/arm.urdf
+world = assets/world.urdf
+start.x = 0
+start.y = 0
+start.theta = 0
+goal.x = 1
+goal.y = 1
+goal.theta = 0
+volume.min.x = -20
+volume.min.y = -10
+volume.max.x = 20
+volume.max.y = 10
+)");
+  const ProblemScene s = loadProblemScene(readProblemConfig(cfg));
+  EXPECT_TRUE(s.robot_shift.isZero());
+  expectBox(s.robot.box(), {-0.5, -0.5, 0}, {0.5, 0.5, 2});
+  expectBox(s.bounds, {-20, -10, 0}, {20, 10, 0});
+  EXPECT_EQ(s.robot.name(), "arm");
+}
+
+TEST(ProblemSceneErrors, TranslationOnlyConfigBuiltInCodeWithARotatedGoal) {
+  TempDir dir;
+  writeAssets(dir);
+  ProblemConfig c = readProblemConfig(dir.write("t.cfg", std::string(kPlanar) + "translation_only = true\n"));
+  c.goal.theta = 1.0;
+  expectSceneError([&] { loadProblemScene(c); }, {"t.cfg: translation_only", "rotation differs"});
+}
+
+TEST(ProblemSceneErrors, MissingRobotNamesTheCfgAndTheFile) {
+  TempDir dir;
+  writeAssets(dir);
+  std::string text = kPlanar;
+  text.replace(text.find("assets/robot.stl"), 16, "assets/car.stl");
+  const ProblemConfig c = readProblemConfig(dir.write("scene.cfg", text));
+  expectSceneError([&] { loadProblemScene(c); }, {"scene.cfg: ", "car.stl", "file not found"});
+}
+
+TEST(ProblemSceneErrors, MalformedWorldNamesTheCfgAndTheFile) {
+  TempDir dir;
+  writeAssets(dir);
+  dir.write("assets/world.urdf", "<robot name='w'>");
+  const ProblemConfig c = readProblemConfig(dir.write("scene.cfg", kPlanar));
+  expectSceneError([&] { loadProblemScene(c); }, {"scene.cfg: ", "world.urdf", "not a valid URDF"});
+}
+
+}  // namespace
+}  // namespace mddual::scene

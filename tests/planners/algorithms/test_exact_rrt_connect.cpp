@@ -52,7 +52,7 @@ TEST(ExactRRTConnect, SolvesThroughTheGapWithAValidPath) {
   og::PathGeometric& path = ss.getSolutionPath();
   EXPECT_TRUE(path.check());
   // Re-check every segment densely: no point of the path is in the wall.
-  for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i) {
+  for (unsigned i = 0; i + 1 < path.getStateCount(); ++i) {
     ob::State* s = ss.getSpaceInformation()->allocState();
     for (int k = 0; k <= 2000; ++k) {
       ss.getStateSpace()->interpolate(path.getState(i), path.getState(i + 1), k / 2000.0, s);
@@ -61,7 +61,8 @@ TEST(ExactRRTConnect, SolvesThroughTheGapWithAValidPath) {
     ss.getSpaceInformation()->freeState(s);
   }
   const auto* first = path.getState(0)->as<ob::RealVectorStateSpace::StateType>();
-  const auto* last = path.getState(path.getStateCount() - 1)->as<ob::RealVectorStateSpace::StateType>();
+  const auto* last =
+      path.getState(static_cast<unsigned>(path.getStateCount() - 1))->as<ob::RealVectorStateSpace::StateType>();
   EXPECT_NEAR(first->values[0], 1.0, 1e-12);
   EXPECT_NEAR(last->values[0], 9.0, 1e-12);
 }

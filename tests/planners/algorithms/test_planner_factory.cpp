@@ -26,8 +26,8 @@ ob::SpaceInformationPtr se3() {
 
 TEST(PlannerFactory, KnowsOmplAppNamesAndOurs) {
   const auto si = se3();
-  for (const std::string& name : {"rrt", "rrtconnect", "kpiece", "bkpiece", "lbkpiece", "prm", "lazyprm", "est", "sbl",
-                                  "rrtstar", "bitstar", "trrt", "stride", "pdst", "mdd_rrtconnect"}) {
+  for (const char* name : {"rrt", "rrtconnect", "kpiece", "bkpiece", "lbkpiece", "prm", "lazyprm", "est", "sbl",
+                           "rrtstar", "bitstar", "trrt", "stride", "pdst", "mdd_rrtconnect"}) {
     const ob::PlannerPtr p = makePlanner(name, si);
     ASSERT_NE(p, nullptr) << name;
   }

@@ -1,7 +1,14 @@
 #include "mddual/planning/planner_factory.h"
 
+#include <ompl/geometric/planners/AnytimePathShortening.h>
+#include <ompl/geometric/planners/cforest/CForest.h>
+#include <ompl/geometric/planners/est/BiEST.h>
 #include <ompl/geometric/planners/est/EST.h>
+#include <ompl/geometric/planners/est/ProjEST.h>
+#include <ompl/geometric/planners/fmt/BFMT.h>
 #include <ompl/geometric/planners/fmt/FMT.h>
+#include <ompl/geometric/planners/informedtrees/ABITstar.h>
+#include <ompl/geometric/planners/informedtrees/AITstar.h>
 #include <ompl/geometric/planners/informedtrees/BITstar.h>
 #include <ompl/geometric/planners/kpiece/BKPIECE1.h>
 #include <ompl/geometric/planners/kpiece/KPIECE1.h>
@@ -13,11 +20,15 @@
 #include <ompl/geometric/planners/prm/PRMstar.h>
 #include <ompl/geometric/planners/prm/SPARS.h>
 #include <ompl/geometric/planners/prm/SPARStwo.h>
+#include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/LBTRRT.h>
 #include <ompl/geometric/planners/rrt/LazyRRT.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/geometric/planners/rrt/RRTXstatic.h>
+#include <ompl/geometric/planners/rrt/RRTsharp.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
+#include <ompl/geometric/planners/rrt/SORRTstar.h>
 #include <ompl/geometric/planners/rrt/TRRT.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
@@ -40,13 +51,22 @@ Allocator make() {
   return [](const ob::SpaceInformationPtr& si) { return std::make_shared<P>(si); };
 }
 
-/// OMPL.app's names for its geometric planners (ompl_benchmark's list), and ours.
+/// OMPL.app's names for its geometric planners (ompl_benchmark's list, plus
+/// OMPL 1.5's informed planners, the same set mddual::scene::knownPlannerNames
+/// accepts in a config), and ours.
 const std::map<std::string, Allocator>& registry() {
   static const std::map<std::string, Allocator> planners{
+      {"abitstar", make<og::ABITstar>()},
+      {"aitstar", make<og::AITstar>()},
+      {"aps", make<og::AnytimePathShortening>()},
+      {"bfmt", make<og::BFMT>()},
+      {"biest", make<og::BiEST>()},
       {"bitstar", make<og::BITstar>()},
       {"bkpiece", make<og::BKPIECE1>()},
+      {"cforest", make<og::CForest>()},
       {"est", make<og::EST>()},
       {"fmt", make<og::FMT>()},
+      {"informedrrtstar", make<og::InformedRRTstar>()},
       {"kpiece", make<og::KPIECE1>()},
       {"lazyprm", make<og::LazyPRM>()},
       {"lazyprmstar", make<og::LazyPRMstar>()},
@@ -56,14 +76,19 @@ const std::map<std::string, Allocator>& registry() {
       {"pdst", make<og::PDST>()},
       {"prm", make<og::PRM>()},
       {"prmstar", make<og::PRMstar>()},
+      {"projest", make<og::ProjEST>()},
       {"rrt", make<og::RRT>()},
       {"rrtconnect", make<og::RRTConnect>()},
+      {"rrtsharp", make<og::RRTsharp>()},
       {"rrtstar", make<og::RRTstar>()},
+      {"rrtxstatic", make<og::RRTXstatic>()},
       {"sbl", make<og::SBL>()},
+      {"sorrtstar", make<og::SORRTstar>()},
       {"spars", make<og::SPARS>()},
       {"spars2", make<og::SPARStwo>()},
       {"stride", make<og::STRIDE>()},
       {"trrt", make<og::TRRT>()},
+      // ours
       {"mdd_rrtconnect", make<ExactRRTConnect>()},
   };
   return planners;

@@ -6,6 +6,7 @@
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
+#include "mddual/scene/problem_config.h"
 
 namespace mddual::planning {
 namespace {
@@ -32,6 +33,13 @@ TEST(PlannerFactory, KnowsOmplAppNamesAndOurs) {
     ASSERT_NE(p, nullptr) << name;
   }
   EXPECT_EQ(makePlanner("mdd_rrtconnect", si)->getName(), "ExactRRTConnect");
+}
+
+TEST(PlannerFactory, BuildsEveryPlannerAConfigMayName) {
+  const auto si = se3();
+  for (const std::string& name : scene::knownPlannerNames()) {
+    EXPECT_NE(makePlanner(name, si), nullptr) << name;
+  }
 }
 
 TEST(PlannerFactory, SetsParametersAndRenames) {

@@ -1,0 +1,69 @@
+// Every committed benchmark config parses, loads (robot, world, bounds), and
+// poses its robot collision-free at start and goal, checked piece by piece
+// with the core's intersect() (not with the checkers under test). The thin-wall
+// config's walls are thinner than OMPL's default motion-check resolution.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "mddual/query.h"
+#include "mddual/scene/problem_config.h"
+
+namespace mddual::scene {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kConfigs = MDDUAL_CONFIGS_DIR;
+
+/// True when the robot at X_WR touches or overlaps a world piece.
+bool collides(const ProblemScene& s, const Eigen::Isometry3d& X_WR) {
+  for (const Piece& r : s.robot.pieces()) {
+    std::vector<int> candidates;
+    s.world.candidates(transformedBox(r.box, X_WR), &candidates);
+    for (int w : candidates) {
+      const IntersectInput in{&s.world.pieces()[w].polytope, Eigen::Isometry3d::Identity(), &r.polytope, X_WR};
+      if (intersect(in).intersecting) return true;
+    }
+  }
+  return false;
+}
+
+TEST(Configs, EveryConfigLoadsWithValidStartAndGoal) {
+  const std::map<std::string, SpaceKind> expected{{"thin_walls", SpaceKind::kR3},
+                                                  {"convex_field", SpaceKind::kR3},
+                                                  {"narrow_passage", SpaceKind::kSE3},
+                                                  {"maze_se2", SpaceKind::kSE2},
+                                                  {"cubicles", SpaceKind::kSE3}};
+  int seen = 0;
+  for (const auto& [name, space] : expected) {
+    SCOPED_TRACE(name);
+    const fs::path cfg = kConfigs / name / (name + ".cfg");
+    const ProblemConfig config = readProblemConfig(cfg, {"mdd_rrtconnect"});
+    EXPECT_EQ(config.name, name);
+    EXPECT_EQ(config.space, space);
+    EXPECT_FALSE(config.planners.empty());
+    const ProblemScene scene = loadProblemScene(config);
+    EXPECT_FALSE(scene.world.pieces().empty());
+    EXPECT_TRUE(scene.bounds.contains(scene.start.translation()));
+    EXPECT_TRUE(scene.bounds.contains(scene.goal.translation()));
+    EXPECT_FALSE(collides(scene, scene.start)) << "start collides";
+    EXPECT_FALSE(collides(scene, scene.goal)) << "goal collides";
+    ++seen;
+  }
+  EXPECT_EQ(seen, 5);
+}
+
+TEST(Configs, ThinWallsAreThinnerThanOmplsDefaultResolution) {
+  const ProblemScene scene =
+      loadProblemScene(readProblemConfig(kConfigs / "thin_walls/thin_walls.cfg", {"mdd_rrtconnect"}));
+  // OMPL's default: longest_valid_segment_fraction 0.01 of the space's
+  // maximum extent (the diagonal of the position bounds for R^3).
+  const double resolution = 0.01 * scene.bounds.diagonal().norm();
+  double thinnest = std::numeric_limits<double>::infinity();
+  for (const Piece& p : scene.world.pieces()) thinnest = std::min(thinnest, p.box.sizes().minCoeff());
+  EXPECT_LT(thinnest * 10.0, resolution);  // 1 cm against 24.5 cm
+}
+
+}  // namespace
+}  // namespace mddual::scene

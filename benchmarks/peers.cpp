@@ -9,10 +9,13 @@
 
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkConvexCast.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 #include <BulletCollision/NarrowPhaseCollision/btSubSimplexConvexCast.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 #include <fcl/geometry/shape/convex.h>
+#include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/continuous_collision.h>
+#include <fcl/narrowphase/distance.h>
 
 static_assert(sizeof(btScalar) == sizeof(double),
               "Bullet must be the double-precision build (BT_USE_DOUBLE_PRECISION)");
@@ -111,7 +114,117 @@ class FclCcd final : public ToiPeer {
   fcl::ContinuousCollisionRequest<double> request_;
 };
 
+/// FCL penetration: collide with contact (MPR with libccd, EPA with indep) or
+/// signed distance (libccd's EPA).
+class FclPenetration final : public PdPeer {
+ public:
+  enum class Mode { kCollide, kSignedDistance };
+  FclPenetration(std::string name, const ConvexPolytope& a, const ConvexPolytope& b, Mode mode, fcl::GJKSolverType gjk)
+      : name_(std::move(name)), a_(fclConvex(a)), b_(fclConvex(b)), mode_(mode) {
+    collide_.num_max_contacts = 1;
+    collide_.enable_contact = true;
+    collide_.gjk_solver_type = gjk;
+    distance_.enable_signed_distance = true;
+    distance_.enable_nearest_points = true;
+    distance_.gjk_solver_type = gjk;
+  }
+  const std::string& name() const override { return name_; }
+  PdAnswer penetration(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB) override {
+    PdAnswer out;
+    if (mode_ == Mode::kCollide) {
+      fcl::CollisionResult<double> result;
+      fcl::collide<double>(a_.get(), X_WA, b_.get(), X_WB, collide_, result);
+      out.collide = result.isCollision();
+      if (out.collide) {
+        if (result.numContacts() == 0) throw std::runtime_error(name_ + ": collision without contact");
+        out.depth = result.getContact(0).penetration_depth;
+      }
+    } else {
+      fcl::DistanceResult<double> result;
+      const double d = fcl::distance<double>(a_.get(), X_WA, b_.get(), X_WB, distance_, result);
+      out.collide = d < 0.0;
+      out.depth = out.collide ? -d : 0.0;
+    }
+    if (!std::isfinite(out.depth)) throw std::runtime_error(name_ + ": non-finite depth");
+    return out;
+  }
+
+ private:
+  std::string name_;
+  std::shared_ptr<fcl::Convex<double>> a_;
+  std::shared_ptr<fcl::Convex<double>> b_;
+  Mode mode_;
+  fcl::CollisionRequest<double> collide_;
+  fcl::DistanceRequest<double> distance_;
+};
+
+/// Bullet's GJK + EPA penetration (btGjkEpaSolver2::Penetration).
+class BulletEpa final : public PdPeer {
+ public:
+  BulletEpa(std::string name, const ConvexPolytope& a, const ConvexPolytope& b)
+      : name_(std::move(name)), a_(bulletHull(a)), b_(bulletHull(b)) {}
+  const std::string& name() const override { return name_; }
+  PdAnswer penetration(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB) override {
+    btGjkEpaSolver2::sResults result;
+    const btTransform ta = toBullet(X_WA);
+    const btTransform tb = toBullet(X_WB);
+    const btVector3 guess = tb.getOrigin() - ta.getOrigin();
+    PdAnswer out;
+    out.collide = btGjkEpaSolver2::Penetration(a_.get(), ta, b_.get(), tb, guess, result);
+    if (out.collide) {
+      if (result.status != btGjkEpaSolver2::sResults::Penetrating) {
+        throw std::runtime_error(name_ + ": status " + std::to_string(static_cast<int>(result.status)));
+      }
+      out.depth = -result.distance;
+    } else if (result.status == btGjkEpaSolver2::sResults::EPA_Failed) {
+      throw std::runtime_error(name_ + ": EPA failed");
+    }
+    if (!std::isfinite(out.depth)) throw std::runtime_error(name_ + ": non-finite depth");
+    return out;
+  }
+
+ private:
+  std::string name_;
+  std::unique_ptr<btConvexHullShape> a_;
+  std::unique_ptr<btConvexHullShape> b_;
+};
+
 }  // namespace
+
+std::vector<std::string> pdPeerNames() {
+  return {"fcl_mpr_libccd", "fcl_epa_indep", "fcl_epa_libccd", "bullet_epa"};
+}
+
+std::string pdPeerSettings(const std::string& name) {
+  if (name == "fcl_mpr_libccd") {
+    return "fcl::collide, num_max_contacts=1, enable_contact, GST_LIBCCD (FCL 0.7: libccd MPR penetration)";
+  }
+  if (name == "fcl_epa_indep") return "fcl::collide, num_max_contacts=1, enable_contact, GST_INDEP (GJK + EPA)";
+  if (name == "fcl_epa_libccd") {
+    return "fcl::distance, enable_signed_distance, GST_LIBCCD (libccd GJK + EPA); depth = -distance";
+  }
+  if (name == "bullet_epa") return "btGjkEpaSolver2::Penetration, btConvexHullShape margin 0 (double)";
+  return "";
+}
+
+std::vector<std::unique_ptr<PdPeer>> makePdPeers(const ConvexPolytope& a, const ConvexPolytope& b,
+                                                 const std::vector<std::string>& names) {
+  std::vector<std::unique_ptr<PdPeer>> out;
+  for (const std::string& n : pdPeerNames()) {
+    if (!names.empty() && std::find(names.begin(), names.end(), n) == names.end()) continue;
+    if (n == "fcl_mpr_libccd") {
+      out.push_back(std::make_unique<FclPenetration>(n, a, b, FclPenetration::Mode::kCollide, fcl::GST_LIBCCD));
+    }
+    if (n == "fcl_epa_indep") {
+      out.push_back(std::make_unique<FclPenetration>(n, a, b, FclPenetration::Mode::kCollide, fcl::GST_INDEP));
+    }
+    if (n == "fcl_epa_libccd") {
+      out.push_back(std::make_unique<FclPenetration>(n, a, b, FclPenetration::Mode::kSignedDistance, fcl::GST_LIBCCD));
+    }
+    if (n == "bullet_epa") out.push_back(std::make_unique<BulletEpa>(n, a, b));
+  }
+  return out;
+}
 
 std::vector<std::string> peerNames() {
   return {"bullet_gjk", "bullet_subsimplex", "fcl_naive", "fcl_ca_libccd", "fcl_ca_indep"};

@@ -48,4 +48,35 @@ std::vector<std::unique_ptr<ToiPeer>> makePeers(const ConvexPolytope& a, const C
 /// A short description of each peer's settings (for the JSON summary).
 std::string peerSettings(const std::string& name);
 
+// ---- Penetration depth peers (issue 5; bench_pd.cpp) ------------------------------
+//
+//   fcl_mpr_libccd      fcl::collide, enable_contact, GST_LIBCCD: FCL 0.7 answers a
+//                       Convex-Convex contact with libccd's MPR penetration
+//                       (ccdMPRPenetration), a depth along one direction
+//   fcl_epa_indep       fcl::collide, enable_contact, GST_INDEP: FCL's own GJK + EPA
+//   fcl_epa_libccd      fcl::distance with enable_signed_distance, GST_LIBCCD:
+//                       libccd's GJK + EPA (ccdGJKSignedDist); depth = -distance
+//   bullet_epa          btGjkEpaSolver2::Penetration (double precision, margin 0)
+//
+// All on fcl::Convex / btConvexHullShape built from the same hulls.
+
+/// What a peer reports for one posed pair.
+struct PdAnswer {
+  bool collide = false;  ///< the peer reports a collision
+  double depth = 0.0;    ///< its penetration depth (0 when not colliding)
+};
+
+class PdPeer {
+ public:
+  virtual ~PdPeer() = default;
+  virtual const std::string& name() const = 0;
+  /// Throws std::runtime_error when the peer reports a failure.
+  virtual PdAnswer penetration(const Eigen::Isometry3d& X_WA, const Eigen::Isometry3d& X_WB) = 0;
+};
+
+std::vector<std::string> pdPeerNames();
+std::vector<std::unique_ptr<PdPeer>> makePdPeers(const ConvexPolytope& a, const ConvexPolytope& b,
+                                                 const std::vector<std::string>& names = {});
+std::string pdPeerSettings(const std::string& name);
+
 }  // namespace mddual::bench

@@ -74,6 +74,21 @@ class ExactEnumerator {
       : pair_(pair), a_(pair.a()), b_(pair.b()), stats_(stats) {
     b_A_.reserve(static_cast<size_t>(b_.numVertices()));
     for (int v = 0; v < b_.numVertices(); ++v) b_A_.push_back(pair.bVertex(v));
+    // B's directed edges b_w - b_v in A's frame, aligned with the polytope's
+    // adjacency array (the walk reads them for every region it enters), and
+    // the squared threshold below which an edge counts as parallel to A's.
+    nbr_base_ = b_.vertexNeighbors(0).begin();
+    const size_t entries = static_cast<size_t>(b_.vertexNeighbors(b_.numVertices() - 1).end() - nbr_base_);
+    edge_A_.resize(entries);
+    parallel2_.resize(entries);
+    for (int v = 0; v < b_.numVertices(); ++v) {
+      const IndexRange nbrs = b_.vertexNeighbors(v);
+      for (int k = 0; k < nbrs.size(); ++k) {
+        const size_t i = static_cast<size_t>(nbrs.begin() + k - nbr_base_);
+        edge_A_[i] = b_A_[static_cast<size_t>(nbrs[k])] - b_A_[static_cast<size_t>(v)];
+        parallel2_[i] = defaults::kParallelSin * defaults::kParallelSin * edge_A_[i].squaredNorm();
+      }
+    }
   }
 
   PdPlane run() {
@@ -101,6 +116,9 @@ class ExactEnumerator {
   const ConvexPolytope& b_;
   PenetrationStats* stats_;
   std::vector<Eigen::Vector3d> b_A_;  ///< B's vertices in A's frame
+  const int* nbr_base_ = nullptr;     ///< start of B's adjacency array
+  std::vector<Eigen::Vector3d> edge_A_;  ///< per adjacency entry (v, w): b_w - b_v, A's frame
+  std::vector<double> parallel2_;        ///< per adjacency entry: (kParallelSin |b_w - b_v|)^2
   PdPlane best_;
 };
 
@@ -157,17 +175,16 @@ int ExactEnumerator::walkArc(int e, int from_face, int vb) {
     double best_ft = 0.0;
     const IndexRange nbrs = b_.vertexNeighbors(vb);
     const Eigen::Vector3d& bv = b_A_[static_cast<size_t>(vb)];
+    const size_t first = static_cast<size_t>(nbrs.begin() - nbr_base_);
     for (int k = 0; k < nbrs.size(); ++k) {
-      const Eigen::Vector3d d = b_A_[static_cast<size_t>(nbrs[k])] - bv;
+      const Eigen::Vector3d& d = edge_A_[first + static_cast<size_t>(k)];
       const double fx = x.dot(d);
       const double ft = tau.dot(d);
-      const double r2 = fx * fx + ft * ft;
-      const double d2 = d.squaredNorm();
       // Parallel edges: the arc runs along this region boundary, no crossing.
-      if (r2 <= defaults::kParallelSin * defaults::kParallelSin * d2) continue;
+      if (fx * fx + ft * ft <= parallel2_[first + static_cast<size_t>(k)]) continue;
       // vb is not the support at x by more than round-off: the region was
       // lost (never in exact arithmetic); redo the arc by testing.
-      if (fx < -defaults::kPdWalkSlackRel * std::sqrt(d2)) return walkArcByTesting(e, from_face, vb);
+      if (fx < 0.0 && fx < -defaults::kPdWalkSlackRel * d.norm()) return walkArcByTesting(e, from_face, vb);
       double s = pseudoAngle(-ft, fx);
       if (s >= 3.0) s = 0.0;  // x . d < 0 and decreasing: leave now
       if (s < best) {

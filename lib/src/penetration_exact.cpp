@@ -49,6 +49,7 @@
 // vertex of A climbed from the neighbouring facet's (O(n) amortised).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "mddual/defaults.h"
@@ -68,43 +69,100 @@ int otherFace(const ConvexPolytope::Edge& e, int f) {
   return e.face_left == f ? e.face_right : e.face_left;
 }
 
+/// A candidate of the branch and bound: a facet of A (FV), of B (VF), or an
+/// arc of A (its EE facets), with a lower bound on its offset.
+struct Item {
+  double bound;
+  int kind;  // 0: FV facet, 1: VF facet, 2: arc
+  int index;
+};
+
+/// Per-thread buffers of the enumeration, reused across queries so that a
+/// query allocates nothing once the buffers have grown (resize() of a
+/// vector that is already large enough neither allocates nor initialises).
+struct Scratch {
+  std::vector<Eigen::Vector3d> b_A;
+  std::vector<char> ready;
+  std::vector<Eigen::Vector3d> edge_A;
+  std::vector<double> parallel2;
+  std::vector<double> fv_base;
+  std::vector<double> vf_base;
+  std::vector<int> region;
+  std::vector<Item> items;
+};
+
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
 class ExactEnumerator {
  public:
   ExactEnumerator(const PairGeometry& pair, PenetrationStats* stats)
-      : pair_(pair), a_(pair.a()), b_(pair.b()), stats_(stats) {
-    b_A_.reserve(static_cast<size_t>(b_.numVertices()));
-    for (int v = 0; v < b_.numVertices(); ++v) b_A_.push_back(pair.bVertex(v));
-    // B's directed edges b_w - b_v in A's frame, aligned with the polytope's
-    // adjacency array (the walk reads them for every region it enters), and
-    // the squared threshold below which an edge counts as parallel to A's.
+      : pair_(pair),
+        a_(pair.a()),
+        b_(pair.b()),
+        stats_(stats),
+        s_(scratch()),
+        b_A_(s_.b_A),
+        ready_(s_.ready),
+        edge_A_(s_.edge_A),
+        parallel2_(s_.parallel2) {
+    b_A_.resize(static_cast<size_t>(b_.numVertices()));
+    ready_.assign(static_cast<size_t>(b_.numVertices()), 0);
     nbr_base_ = b_.vertexNeighbors(0).begin();
     const size_t entries = static_cast<size_t>(b_.vertexNeighbors(b_.numVertices() - 1).end() - nbr_base_);
     edge_A_.resize(entries);
     parallel2_.resize(entries);
-    for (int v = 0; v < b_.numVertices(); ++v) {
-      const IndexRange nbrs = b_.vertexNeighbors(v);
-      for (int k = 0; k < nbrs.size(); ++k) {
-        const size_t i = static_cast<size_t>(nbrs.begin() + k - nbr_base_);
-        edge_A_[i] = b_A_[static_cast<size_t>(nbrs[k])] - b_A_[static_cast<size_t>(v)];
-        parallel2_[i] = defaults::kParallelSin * defaults::kParallelSin * edge_A_[i].squaredNorm();
-      }
-    }
   }
 
-  PdPlane run() {
+  /// Every FV, VF and EE facet (no pruning).
+  PdPlane enumerateAll() {
     facetVertexAndEdgeEdge();
     vertexFacet();
     return best_;
   }
+  /// Only the facets whose lower bound is below the best offset found.
+  PdPlane branchAndBound();
 
  private:
+  /// B's vertex v and its directed edges b_w - b_v in A's frame, computed on
+  /// first use (the walk reads them for every region it enters; a pruned
+  /// enumeration touches few of them).
+  void prepare(int v) {
+    if (ready_[static_cast<size_t>(v)] != 0) return;
+    ready_[static_cast<size_t>(v)] = 1;
+    b_A_[static_cast<size_t>(v)] = pair_.bVertex(v);
+    const IndexRange nbrs = b_.vertexNeighbors(v);
+    for (int k = 0; k < nbrs.size(); ++k) {
+      const size_t i = static_cast<size_t>(nbrs.begin() + k - nbr_base_);
+      edge_A_[i] = pair_.bToA(b_.vertex(nbrs[k]) - b_.vertex(v));
+      parallel2_[i] = defaults::kParallelSin * defaults::kParallelSin * edge_A_[i].squaredNorm();
+    }
+  }
+  const Eigen::Vector3d& bA(int v) {
+    prepare(v);
+    return b_A_[static_cast<size_t>(v)];
+  }
   void offer(FaceOfM::Kind kind, int ia, int ib, const Eigen::Vector3d& n, double h, int va, int vb) {
     if (h < best_.h) best_ = PdPlane{{kind, ia, ib}, n, h, va, vb};
   }
   void offerFV(int f, int vb) {
     ++stats_->fv_facets;
     const Eigen::Vector3d& n = a_.faceNormal(f);
-    offer(FaceOfM::Kind::kFV, f, vb, n, a_.faceOffset(f) - n.dot(b_A_[vb]), a_.faceVertices(f)[0], vb);
+    offer(FaceOfM::Kind::kFV, f, vb, n, a_.faceOffset(f) - n.dot(bA(vb)), a_.faceVertices(f)[0], vb);
+  }
+  void offerVF(int g, int va) {
+    ++stats_->vf_facets;
+    const Eigen::Vector3d n = -pair_.bToA(b_.faceNormal(g));
+    offer(FaceOfM::Kind::kVF, va, g, n, n.dot(a_.vertex(va)) + b_.faceOffset(g) - n.dot(pair_.p_AB()), va,
+          b_.faceVertices(g)[0]);
+  }
+  int supportMinusB(const Eigen::Vector3d& n, int hint) {
+    SearchStats support;
+    const int v = pair_.supportMinusB(n, hint, &support);
+    stats_->support_vertices += support.support_vertices;
+    return v;
   }
   void facetVertexAndEdgeEdge();
   void vertexFacet();
@@ -115,12 +173,150 @@ class ExactEnumerator {
   const ConvexPolytope& a_;
   const ConvexPolytope& b_;
   PenetrationStats* stats_;
-  std::vector<Eigen::Vector3d> b_A_;  ///< B's vertices in A's frame
-  const int* nbr_base_ = nullptr;     ///< start of B's adjacency array
-  std::vector<Eigen::Vector3d> edge_A_;  ///< per adjacency entry (v, w): b_w - b_v, A's frame
-  std::vector<double> parallel2_;        ///< per adjacency entry: (kParallelSin |b_w - b_v|)^2
+  Scratch& s_;
+  std::vector<Eigen::Vector3d>& b_A_;     ///< B's vertices in A's frame (where ready_)
+  std::vector<char>& ready_;              ///< per vertex of B: b_A_ and its edges computed
+  const int* nbr_base_ = nullptr;         ///< start of B's adjacency array
+  std::vector<Eigen::Vector3d>& edge_A_;  ///< per adjacency entry (v, w): b_w - b_v, A's frame
+  std::vector<double>& parallel2_;        ///< per adjacency entry: (kParallelSin |b_w - b_v|)^2
   PdPlane best_;
 };
+
+PdPlane ExactEnumerator::branchAndBound() {
+  // Lower bounds (paper 2.2's facets of M, each bounded before it is
+  // computed). A holds the ball of radius rho_A around its centroid c_A
+  // (rho_A = the smallest distance from c_A to a face plane), so
+  // h_A(n) >= n . c_A + rho_A for every unit n; likewise for B. Hence:
+  //   FV facet f of A:  h = offset(f) + h_-B(n_f) >= offset(f) - n_f . c_B + rho_B;
+  //   VF facet g of B:  h = h_A(-n_g) + offset(g) (B's frame, n_g its normal)
+  //                       >= offset(g) - n_g . c_A + rho_A;
+  //   EE facets on the arc of edge e of A (a on e, n on the arc):
+  //                     h = n . a + h_-B(n) >= rho_B + min over the arc of n . (a - c_B).
+  // n . q over the arc (a piece of the great circle orthogonal to the edge)
+  // is smallest at -q_perp / |q_perp| (q_perp: q minus its component along
+  // the edge) if that point is on the arc, else at an end, where it is the
+  // end facet's FV bound minus rho_B. When c_B lies inside A the interior
+  // case cannot happen: on the arc n . (a - c_B) = h_A(n) - n . c_B > 0,
+  // while the value at -q_perp / |q_perp| is -|q_perp| <= 0. So then an
+  // arc's bound is the smaller of its two facets' FV bounds, and only arcs at
+  // a facet that survives need looking at.
+  // A candidate whose bound is at least the best offset found so far cannot
+  // be closer: it is skipped. The rest is enumerated exactly, the EE facets
+  // by walking the arcs as in enumerateAll(), so the minimum is PD.
+  const int m = a_.numFaces();
+  const int n = b_.numFaces();
+  const Eigen::Vector3d c_B = a_.centroid() - pair_.interiorPoint();  // B's centroid, A's frame
+  const Eigen::Vector3d c_A_in_B = pair_.aToB(a_.centroid() - pair_.p_AB());
+  const double slack = pair_.tieTolerance();
+  // FV bounds without rho_B (fv_base), VF bounds without rho_A; the radii
+  // come out of the same loops.
+  std::vector<double>& fv_base = s_.fv_base;
+  std::vector<double>& vf_base = s_.vf_base;
+  fv_base.resize(static_cast<size_t>(m));
+  vf_base.resize(static_cast<size_t>(n));
+  double rho_A = std::numeric_limits<double>::infinity();
+  double rho_B = std::numeric_limits<double>::infinity();
+  double min_fv = rho_A;
+  double min_vf = rho_A;
+  int seed_fv = 0;
+  int seed_vf = 0;
+  for (int f = 0; f < m; ++f) {
+    const Eigen::Vector3d& nf = a_.faceNormal(f);
+    const double base = a_.faceOffset(f) - nf.dot(c_B);
+    rho_A = std::min(rho_A, a_.faceOffset(f) - nf.dot(a_.centroid()));
+    fv_base[static_cast<size_t>(f)] = base;
+    if (base < min_fv) {
+      min_fv = base;
+      seed_fv = f;
+    }
+  }
+  for (int g = 0; g < n; ++g) {
+    const Eigen::Vector3d& ng = b_.faceNormal(g);
+    const double base = b_.faceOffset(g) - ng.dot(c_A_in_B);
+    rho_B = std::min(rho_B, b_.faceOffset(g) - ng.dot(b_.centroid()));
+    vf_base[static_cast<size_t>(g)] = base;
+    if (base < min_vf) {
+      min_vf = base;
+      seed_vf = g;
+    }
+  }
+  rho_A = std::max(rho_A, 0.0);
+  rho_B = std::max(rho_B, 0.0);
+  const bool centre_in_a = min_fv > 0.0;  // c_B strictly inside A
+  // Seeds: the FV and VF facets with the smallest bounds, computed exactly.
+  std::vector<int>& region = s_.region;
+  region.assign(static_cast<size_t>(m), -1);
+  int hint_b = -1;
+  int hint_a = -1;
+  auto regionOf = [&](int f) {
+    int& r = region[static_cast<size_t>(f)];
+    if (r < 0) r = supportMinusB(a_.faceNormal(f), hint_b);
+    hint_b = r;
+    return r;
+  };
+  auto vertexFacet = [&](int g) {
+    SearchStats support;
+    hint_a = pair_.supportA(-pair_.bToA(b_.faceNormal(g)), hint_a, &support);
+    stats_->support_vertices += support.support_vertices;
+    offerVF(g, hint_a);
+  };
+  offerFV(seed_fv, regionOf(seed_fv));
+  vertexFacet(seed_vf);
+  // The candidates that can still beat the best.
+  std::vector<Item>& items = s_.items;
+  items.clear();
+  const double cut = best_.h + slack;
+  for (int f = 0; f < m; ++f) {
+    const double bound = fv_base[static_cast<size_t>(f)] + rho_B;
+    if (bound < cut && f != seed_fv) items.push_back({bound, 0, f});
+  }
+  for (int g = 0; g < n; ++g) {
+    const double bound = vf_base[static_cast<size_t>(g)] + rho_A;
+    if (bound < cut && g != seed_vf) items.push_back({bound, 1, g});
+  }
+  for (int e = 0; e < a_.numEdges(); ++e) {
+    const ConvexPolytope::Edge& edge = a_.edge(e);
+    double low = std::min(fv_base[static_cast<size_t>(edge.face_left)], fv_base[static_cast<size_t>(edge.face_right)]);
+    if (centre_in_a && low + rho_B >= cut) continue;
+    if (!centre_in_a) {
+      const Eigen::Vector3d q = a_.vertex(edge.v0) - c_B;
+      const Eigen::Vector3d q_perp = q - q.dot(edge.dir_P) * edge.dir_P;
+      const double norm = q_perp.norm();
+      if (norm > 0.0 && -q_perp.dot(edge.wedge_left_P) >= 0.0 && -q_perp.dot(edge.wedge_right_P) >= 0.0) low = -norm;
+    }
+    if (low + rho_B < cut) items.push_back({low + rho_B, 2, e});
+  }
+  // Order: the kFirst candidates with the lowest bounds first (nth_element,
+  // then sorted), which usually brings the best offset down to PD; every
+  // candidate whose bound is below PD must be processed anyway, in any order,
+  // so the rest is one pass, each candidate checked against the current best.
+  const auto lower = [](const Item& x, const Item& y) { return x.bound < y.bound; };
+  constexpr size_t kFirst = 16;
+  const size_t first = std::min(kFirst, items.size());
+  std::nth_element(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(first), items.end(), lower);
+  std::sort(items.begin(), items.begin() + static_cast<std::ptrdiff_t>(first), lower);
+  int processed = 0;
+  for (const Item& it : items) {
+    if (it.bound - slack >= best_.h) continue;
+    ++processed;
+    if (it.kind == 0) {
+      offerFV(it.index, regionOf(it.index));
+    } else if (it.kind == 1) {
+      vertexFacet(it.index);
+    } else {
+      const ConvexPolytope::Edge& edge = a_.edge(it.index);
+      const int from =
+          region[static_cast<size_t>(edge.face_left)] >= 0 || region[static_cast<size_t>(edge.face_right)] < 0
+              ? edge.face_left
+              : edge.face_right;
+      const int to = otherFace(edge, from);
+      const int end = walkArc(it.index, from, regionOf(from));
+      if (region[static_cast<size_t>(to)] < 0) region[static_cast<size_t>(to)] = end;
+    }
+  }
+  stats_->pruned += m + n + a_.numEdges() - 2 - processed;
+  return best_;
+}
 
 void ExactEnumerator::facetVertexAndEdgeEdge() {
   // Breadth-first over the facets of A (across edges): each edge's arc is
@@ -131,9 +327,7 @@ void ExactEnumerator::facetVertexAndEdgeEdge() {
   std::vector<char> walked(static_cast<size_t>(a_.numEdges()), 0);
   std::vector<int> queue;
   queue.reserve(static_cast<size_t>(m));
-  SearchStats support;
-  region[0] = pair_.supportMinusB(a_.faceNormal(0), -1, &support);
-  stats_->support_vertices += support.support_vertices;
+  region[0] = supportMinusB(a_.faceNormal(0), -1);
   queue.push_back(0);
   for (size_t head = 0; head < queue.size(); ++head) {
     const int f = queue[head];
@@ -174,7 +368,7 @@ int ExactEnumerator::walkArc(int e, int from_face, int vb) {
     double best_fx = 0.0;
     double best_ft = 0.0;
     const IndexRange nbrs = b_.vertexNeighbors(vb);
-    const Eigen::Vector3d& bv = b_A_[static_cast<size_t>(vb)];
+    const Eigen::Vector3d& bv = bA(vb);
     const size_t first = static_cast<size_t>(nbrs.begin() - nbr_base_);
     for (int k = 0; k < nbrs.size(); ++k) {
       const Eigen::Vector3d& d = edge_A_[first + static_cast<size_t>(k)];
@@ -229,13 +423,9 @@ int ExactEnumerator::walkArcByTesting(int e, int from_face, int vb_hint) {
     if (sign == 0.0 || sine <= defaults::kParallelSin) continue;
     const Eigen::Vector3d n = (sign / sine) * x;
     ++stats_->ee_facets;
-    offer(FaceOfM::Kind::kEE, e, j, n, n.dot(a0 - b_A_[static_cast<size_t>(eb.v0)]), ea.v0, eb.v0);
+    offer(FaceOfM::Kind::kEE, e, j, n, n.dot(a0 - bA(eb.v0)), ea.v0, eb.v0);
   }
-  const int to_face = otherFace(ea, from_face);
-  SearchStats support;
-  const int vb = pair_.supportMinusB(a_.faceNormal(to_face), vb_hint, &support);
-  stats_->support_vertices += support.support_vertices;
-  return vb;
+  return supportMinusB(a_.faceNormal(otherFace(ea, from_face)), vb_hint);
 }
 
 void ExactEnumerator::vertexFacet() {
@@ -254,11 +444,8 @@ void ExactEnumerator::vertexFacet() {
   SupportStats climb;
   for (size_t head = 0; head < queue.size(); ++head) {
     const int g = queue[head];
-    const Eigen::Vector3d n = -pair_.bToA(b_.faceNormal(g));
     const int v = va[static_cast<size_t>(g)];
-    ++stats_->vf_facets;
-    offer(FaceOfM::Kind::kVF, v, g, n, n.dot(a_.vertex(v)) + b_.faceOffset(g) - n.dot(pair_.p_AB()), v,
-          b_.faceVertices(g)[0]);
+    offerVF(g, v);
     for (int e : b_.faceEdges(g)) {
       const int h = otherFace(b_.edge(e), g);
       if (va[static_cast<size_t>(h)] >= 0) continue;
@@ -271,8 +458,9 @@ void ExactEnumerator::vertexFacet() {
 
 }  // namespace
 
-PdPlane exactClosestFacet(const PairGeometry& pair, PenetrationStats* stats) {
-  return ExactEnumerator(pair, stats).run();
+PdPlane exactClosestFacet(const PairGeometry& pair, PenetrationStats* stats, bool prune) {
+  ExactEnumerator enumerator(pair, stats);
+  return prune ? enumerator.branchAndBound() : enumerator.enumerateAll();
 }
 
 }  // namespace mddual::detail

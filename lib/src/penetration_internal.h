@@ -33,11 +33,13 @@ inline void keepCloser(const PdPlane& p, PdPlane* best) {
 
 // ---- Exact (penetration_exact.cpp) ----------------------------------------------
 
-/// The facet of M closest to the origin, by enumerating every FV, VF and EE
-/// facet (the EE ones by walking the Gaussian map of A across -B's). The
-/// origin must be inside M (every facet offset positive) for the result to be
-/// the penetration depth; the enumeration itself does not need it.
-PdPlane exactClosestFacet(const PairGeometry& pair, PenetrationStats* stats);
+/// The facet of M closest to the origin, by enumerating the FV, VF and EE
+/// facets (the EE ones by walking the Gaussian map of A across -B's). With
+/// `prune`, candidates whose lower bound (penetration_exact.cpp) is no better
+/// than the best facet found are skipped; without, every facet of M is
+/// enumerated (the tests count them). The origin must be inside M (every
+/// facet offset positive) for the result to be the penetration depth.
+PdPlane exactClosestFacet(const PairGeometry& pair, PenetrationStats* stats, bool prune = true);
 
 // ---- Rays (penetration_rays.cpp) ---------------------------------------------
 

@@ -13,6 +13,8 @@
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/penetration.h"
+#include "pair.h"
+#include "penetration_internal.h"
 
 namespace mddual {
 namespace {
@@ -189,42 +191,65 @@ FacetKinds facetKinds(const MinkowskiDifference& md) {
   return k;
 }
 
+/// The exact method's enumeration on a posed pair, with or without pruning.
+PenetrationStats enumerate(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                           const Eigen::Isometry3d& X_WB, bool prune, double* depth) {
+  const detail::PairGeometry pair(&a, X_WA, &b, X_WB, "test");
+  PenetrationStats stats;
+  *depth = detail::exactClosestFacet(pair, &stats, prune).h;
+  return stats;
+}
+
 TEST(PenetrationExact, EnumeratesExactlyTheFacetsOfM) {
-  // Generic pairs (random blobs): every FV, VF and EE facet of M once, and
-  // nothing else.
+  // Generic pairs (random blobs): without pruning, every FV, VF and EE facet
+  // of M once, and nothing else; with pruning, the same minimum.
   Rng rng(21);
   for (int i = 0; i < 40; ++i) {
     const ConvexPolytope a = ConvexPolytope::fromPoints(generators::blob(5 + i, {1, 1.3, 0.9}, rng));
     const ConvexPolytope b = ConvexPolytope::fromPoints(generators::blob(45 - i, {1.2, 0.8, 1}, rng));
     const Eigen::Isometry3d X_WA = pose(generators::randomRotation(rng), {0, 0, 0});
     const Eigen::Isometry3d X_WB = pose(generators::randomRotation(rng), 0.5 * generators::randomUnitVector(rng));
-    const PenetrationResult r = pd(a, X_WA, b, X_WB, PenetrationMethod::kExact);
+    double all = 0.0;
+    double pruned = 0.0;
+    const PenetrationStats s = enumerate(a, X_WA, b, X_WB, false, &all);
+    const PenetrationStats p = enumerate(a, X_WA, b, X_WB, true, &pruned);
     const FacetKinds k = facetKinds(MinkowskiDifference::build(a, X_WA, b, X_WB));
-    EXPECT_EQ(r.stats.fv_facets, k.fv) << i;
-    EXPECT_EQ(r.stats.vf_facets, k.vf) << i;
-    EXPECT_EQ(r.stats.ee_facets, k.ee) << i;
-    EXPECT_EQ(r.stats.walk_fallbacks, 0);
+    EXPECT_EQ(s.fv_facets, k.fv) << i;
+    EXPECT_EQ(s.vf_facets, k.vf) << i;
+    EXPECT_EQ(s.ee_facets, k.ee) << i;
+    EXPECT_EQ(s.walk_fallbacks, 0);
+    EXPECT_EQ(s.pruned, 0);
+    EXPECT_NEAR(pruned, all, 1e-12) << i;
+    EXPECT_LT(p.fv_facets + p.vf_facets + p.ee_facets, k.fv + k.vf + k.ee) << i;
   }
 }
 
 TEST(PenetrationExact, GaussianMapWalkIsOutputSensitive) {
   // Two ellipsoids of 3000 vertices (~9000 edges each): the walk tests
-  // (edges of A + EE facets) x (degree of B) arc pairs, not 81 million.
+  // (edges of A + EE facets) x (degree of B) arc pairs, not 81 million; the
+  // lower bounds then leave a small fraction of that to do.
   const ConvexPolytope a = ConvexPolytope::fromPoints(generators::ellipsoid(3000));
   const ConvexPolytope b = ConvexPolytope::fromPoints(generators::ellipsoid(3000));
   Rng rng(5);
-  const PenetrationResult r = pd(a, pose(generators::randomRotation(rng), {0, 0, 0}), b,
-                                 pose(generators::randomRotation(rng), {0.5, 0.2, -0.3}), PenetrationMethod::kExact);
-  ASSERT_EQ(r.status, PenetrationStatus::kPenetrating);
+  const Eigen::Isometry3d X_WA = pose(generators::randomRotation(rng), {0, 0, 0});
+  const Eigen::Isometry3d X_WB = pose(generators::randomRotation(rng), {0.5, 0.2, -0.3});
+  double all = 0.0;
+  double pruned = 0.0;
+  const PenetrationStats s = enumerate(a, X_WA, b, X_WB, false, &all);
+  const PenetrationStats p = enumerate(a, X_WA, b, X_WB, true, &pruned);
   const double all_pairs = static_cast<double>(a.numEdges()) * b.numEdges();
-  std::printf("[ walk     ] %d x %d edges: %lld arc pairs tested (%.4f%% of all pairs), %d EE facets, %d steps\n",
-              a.numEdges(), b.numEdges(), r.stats.arc_pairs, 100.0 * static_cast<double>(r.stats.arc_pairs) / all_pairs,
-              r.stats.ee_facets, r.stats.walk_steps);
-  EXPECT_LT(static_cast<double>(r.stats.arc_pairs), 5e-3 * all_pairs);
-  EXPECT_LE(r.stats.arc_pairs, 20LL * (a.numEdges() + r.stats.ee_facets));
-  EXPECT_EQ(r.stats.walk_fallbacks, 0);
-  EXPECT_EQ(r.stats.fv_facets, a.numFaces());
-  EXPECT_EQ(r.stats.vf_facets, b.numFaces());
+  std::printf(
+      "[ walk     ] %d x %d edges: %lld arc pairs tested (%.4f%% of all pairs), %d EE facets, %d steps; "
+      "pruned: %lld arc pairs, %d of %d candidates skipped\n",
+      a.numEdges(), b.numEdges(), s.arc_pairs, 100.0 * static_cast<double>(s.arc_pairs) / all_pairs, s.ee_facets,
+      s.walk_steps, p.arc_pairs, p.pruned, a.numFaces() + b.numFaces() + a.numEdges());
+  EXPECT_LT(static_cast<double>(s.arc_pairs), 5e-3 * all_pairs);
+  EXPECT_LE(s.arc_pairs, 20LL * (a.numEdges() + s.ee_facets));
+  EXPECT_EQ(s.walk_fallbacks, 0);
+  EXPECT_EQ(s.fv_facets, a.numFaces());
+  EXPECT_EQ(s.vf_facets, b.numFaces());
+  EXPECT_NEAR(pruned, all, 1e-12);
+  EXPECT_LT(p.arc_pairs, s.arc_pairs / 4);
 }
 
 TEST(PenetrationExact, LargeEllipsoidsAgreeWithTheBruteForce) {

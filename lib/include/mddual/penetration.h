@@ -79,6 +79,7 @@ struct PenetrationStats {
   long long arc_pairs = 0;   ///< (arc of A, arc of -B) pairs tested by the map walk
   int walk_steps = 0;        ///< vertex regions of -B entered by the map walk
   int walk_fallbacks = 0;    ///< arcs re-done by testing every edge of B (round-off; 0 on generic input)
+  int pruned = 0;            ///< facets of A or B and arcs of A skipped by their lower bound
   int support_vertices = 0;  ///< vertices whose support value was evaluated
   // kApprox, kShallow, polyhedral metric:
   int grid_directions = 0;  ///< directions of the grid (or vertices of K)

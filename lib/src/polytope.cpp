@@ -35,8 +35,6 @@ class PolytopeBuilder {
 
   void buildFlat(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& normal);
   void buildSolid(const std::vector<Eigen::Vector3d>& points, double diameter);
-  std::vector<Face> mergeCoplanar(const std::vector<detail::HullFacet>& facets,
-                                  const std::vector<Eigen::Vector3d>& points, double tol) const;
   void finish(const std::vector<Eigen::Vector3d>& points, std::vector<Face> faces);
 
   ConvexPolytope* out_;
@@ -56,27 +54,6 @@ Eigen::Vector3d anyOrthogonal(const Eigen::Vector3d& n) {
   const Eigen::Vector3d t = std::abs(n.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   return n.cross(t).normalized();
 }
-
-/// Unit normal of a planar loop by Newell's method (area weighted, robust to
-/// nearly collinear consecutive vertices).
-Eigen::Vector3d newellNormal(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& loop) {
-  Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d& o = points[loop[0]];
-  for (size_t i = 0; i < loop.size(); ++i) {
-    n += (points[loop[i]] - o).cross(points[loop[(i + 1) % loop.size()]] - o);
-  }
-  return n.normalized();
-}
-
-struct UnionFind {
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-  std::vector<int> parent;
-};
 
 }  // namespace
 
@@ -158,62 +135,17 @@ void PolytopeBuilder::buildFlat(const std::vector<Eigen::Vector3d>& points, cons
 }
 
 void PolytopeBuilder::buildSolid(const std::vector<Eigen::Vector3d>& points, double diameter) {
-  const std::vector<detail::HullFacet> facets = detail::hull3d(points, "polytope");
-  finish(points, mergeCoplanar(facets, points, defaults::kCoplanarToleranceRel * diameter));
-}
-
-std::vector<PolytopeBuilder::Face> PolytopeBuilder::mergeCoplanar(const std::vector<detail::HullFacet>& facets,
-                                                                  const std::vector<Eigen::Vector3d>& points,
-                                                                  double tol) const {
-  const int nf = static_cast<int>(facets.size());
-  // Directed edge (a, b) -> facet holding it.
-  std::map<std::pair<int, int>, int> owner;
-  for (int f = 0; f < nf; ++f) {
-    const std::vector<int>& loop = facets[f].vertices;
-    for (size_t i = 0; i < loop.size(); ++i) owner[{loop[i], loop[(i + 1) % loop.size()]}] = f;
-  }
-  auto coplanar = [&](int f, int g) {
-    if (facets[f].normal.dot(facets[g].normal) < 1.0 - 1e-9) return false;
-    for (int v : facets[g].vertices) {
-      if (std::abs(facets[f].normal.dot(points[v]) - facets[f].offset) > tol) return false;
-    }
-    for (int v : facets[f].vertices) {
-      if (std::abs(facets[g].normal.dot(points[v]) - facets[g].offset) > tol) return false;
-    }
-    return true;
-  };
-  UnionFind groups(nf);
-  for (const auto& [key, f] : owner) {
-    const auto it = owner.find({key.second, key.first});
-    if (it != owner.end() && it->second != f && coplanar(f, it->second)) groups.unite(f, it->second);
-  }
-  // Boundary of each group: directed edges whose reverse lies in another group.
-  std::map<int, std::map<int, int>> next_of;  // group -> (a -> b)
-  for (const auto& [key, f] : owner) {
-    const auto it = owner.find({key.second, key.first});
-    const int g = groups.find(f);
-    if (it == owner.end() || groups.find(it->second) != g) next_of[g][key.first] = key.second;
-  }
+  // qhull merges coplanar facets as it builds the hull (paper VI-C), within
+  // kCoplanarToleranceRel of the diameter: merging inside qhull keeps the
+  // topology valid, where merging its output afterwards did not on points
+  // with round-off above qhull's own estimate (vertex differences of bodies
+  // far from the origin).
+  const std::vector<detail::HullFacet> facets =
+      detail::hull3d(points, "polytope", defaults::kCoplanarToleranceRel * diameter);
   std::vector<Face> faces;
-  for (auto& [g, next] : next_of) {
-    Face face;
-    const int start = next.begin()->first;
-    int v = start;
-    do {
-      face.loop.push_back(v);
-      const auto it = next.find(v);
-      if (it == next.end() || face.loop.size() > next.size()) {
-        throw NumericalError("polytope: merged hull face is not a simple loop");
-      }
-      v = it->second;
-    } while (v != start);
-    if (face.loop.size() != next.size()) {
-      throw NumericalError("polytope: merged hull face has several boundary loops");
-    }
-    face.normal = newellNormal(points, face.loop);
-    faces.push_back(std::move(face));
-  }
-  return faces;
+  faces.reserve(facets.size());
+  for (const detail::HullFacet& f : facets) faces.push_back({f.normal, f.vertices});
+  finish(points, std::move(faces));
 }
 
 void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::vector<Face> faces) {

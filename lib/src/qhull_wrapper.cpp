@@ -43,11 +43,20 @@ class ErrorCapture {
 /// Owns one qhull run: constructs, runs and frees it.
 class QhullRun {
  public:
-  QhullRun(int dim, std::vector<coordT>* coords, const std::string& what) {
+  QhullRun(int dim, std::vector<coordT>* coords, const std::string& what, double premerge = 0.0) {
     qh_zero(&qh_, errors_.stream());
-    char options[] = "qhull";  // default: premerge coplanar facets (C-0)
+    // Default "qhull" pre-merges coplanar facets within round-off (C-0);
+    // "C-n" widens that to centrums within n of a neighbour's plane.
+    std::string text = "qhull";
+    if (premerge > 0.0) {
+      char value[64];
+      std::snprintf(value, sizeof(value), " C-%.3g", premerge);
+      text += value;
+    }
+    std::vector<char> options(text.begin(), text.end());
+    options.push_back('\0');
     const int count = static_cast<int>(coords->size()) / dim;
-    exit_code_ = qh_new_qhull(&qh_, dim, count, coords->data(), False, options, nullptr, errors_.stream());
+    exit_code_ = qh_new_qhull(&qh_, dim, count, coords->data(), False, options.data(), nullptr, errors_.stream());
     if (exit_code_ != 0) {
       throw HullError(what + ": qhull failed (exit code " + std::to_string(exit_code_) + "): " + errors_.text());
     }
@@ -71,13 +80,14 @@ class QhullRun {
 
 }  // namespace
 
-std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const std::string& what) {
+std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const std::string& what,
+                              double premerge) {
   std::vector<coordT> coords;
   coords.reserve(points.size() * 3);
   for (const Eigen::Vector3d& p : points) {
     coords.insert(coords.end(), {p.x(), p.y(), p.z()});
   }
-  QhullRun run(3, &coords, what);
+  QhullRun run(3, &coords, what, premerge);
   qhT* qh = run.qh();
 
   std::vector<HullFacet> facets;

@@ -18,10 +18,14 @@ struct HullFacet {
   std::vector<int> vertices;
 };
 
-/// Convex hull of 3D points with qhull's default coplanar merging ("C-0").
-/// `what` names the caller's object for error messages. Throws HullError with
-/// qhull's own message when qhull fails (e.g. on a flat set).
-std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const std::string& what);
+/// Convex hull of 3D points. qhull merges coplanar facets while it builds the
+/// hull (which keeps the topology valid): facets whose centrums lie within
+/// `premerge` of a neighbour's plane (world units), or within qhull's own
+/// round-off estimate when `premerge` is 0 ("C-0"). `what` names the caller's
+/// object for error messages. Throws HullError with qhull's own message when
+/// qhull fails (e.g. on a flat set).
+std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const std::string& what,
+                              double premerge = 0.0);
 
 /// Vertices of the 2D convex hull of points, counter-clockwise, as indices into
 /// points (collinear boundary points dropped). Throws HullError on failure.

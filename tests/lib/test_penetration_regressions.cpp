@@ -24,10 +24,10 @@ PenetrationResult pdOf(const Points& a_pts, const Points& b_pts, PenetrationMeth
 // Core bug (brute force, not this module): two unit cubes in the same random
 // orientation at an offset of ~2000, B shifted by (0.7, 0.2, 0) in the cubes'
 // frame. MinkowskiDifference::build hulls the 64 vertex differences, many of
-// them coplanar, and ConvexPolytope::fromPoints rejects qhull's answer with
+// them coplanar, and ConvexPolytope::fromPoints rejected qhull's answer with
 // "polytope: hull edge 1->2 appears twice" (NumericalError). The fast methods
-// answer 0.3 (to 5e-14). Enable once the core's hull handles it.
-TEST(PenetrationRegressions, DISABLED_BruteForceOnRotatedCubesFarFromTheOrigin) {
+// answer 0.3 (to 5e-14). Fixed by merging inside qhull (premerge C-n).
+TEST(PenetrationRegressions, BruteForceOnRotatedCubesFarFromTheOrigin) {
   const Points a = {{1000, -2000, 500},
                     {999.102931576218, -1999.7307660462648, 500.35040165697308},
                     {998.97730339610393, -1999.1259136564652, 499.56403587254778},

@@ -6,6 +6,7 @@
 // them private to its hill climb.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mddual/defaults.h"
 #include "penetration_internal.h"
@@ -17,13 +18,17 @@ int otherFace(const ConvexPolytope::Edge& e, int f) {
   return e.face_left == f ? e.face_right : e.face_left;
 }
 
-void addEdgesOf(const ConvexPolytope& p, const std::vector<int>& vertices, std::vector<int>* edges) {
+void addEdgesOf(const ConvexPolytope& p, const int* first, const int* last, std::vector<int>* edges) {
   edges->clear();
-  for (int v : vertices) {
-    for (int e : p.vertexEdges(v)) {
+  for (const int* v = first; v != last; ++v) {
+    for (int e : p.vertexEdges(*v)) {
       if (std::find(edges->begin(), edges->end(), e) == edges->end()) edges->push_back(e);
     }
   }
+}
+
+void addEdgesOf(const ConvexPolytope& p, const std::vector<int>& vertices, std::vector<int>* edges) {
+  addEdgesOf(p, vertices.data(), vertices.data() + vertices.size(), edges);
 }
 
 }  // namespace
@@ -36,9 +41,48 @@ std::uint64_t FacetGraph::key(const FaceOfM& f) {
          (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 31) | static_cast<std::uint32_t>(b);
 }
 
-FacetGraph::EdgeInA FacetGraph::edgeInA(int e, bool of_b) const {
+FacetGraph::FacetGraph(const PairGeometry& pair, PenetrationStats* stats)
+    : pair_(pair), stats_(stats), edges_b_(static_cast<size_t>(pair.b().numEdges())) {
+  const ConvexPolytope& a = pair.a();
+  const ConvexPolytope& b = pair.b();
+  c_B_ = a.centroid() - pair.interiorPoint();
+  c_A_in_B_ = pair.aToB(a.centroid() - pair.p_AB());
+  rho_A_ = std::numeric_limits<double>::infinity();
+  rho_B_ = std::numeric_limits<double>::infinity();
+  for (int f = 0; f < a.numFaces(); ++f) rho_A_ = std::min(rho_A_, a.faceOffset(f) - a.faceNormal(f).dot(a.centroid()));
+  for (int g = 0; g < b.numFaces(); ++g) rho_B_ = std::min(rho_B_, b.faceOffset(g) - b.faceNormal(g).dot(b.centroid()));
+  rho_A_ = std::max(rho_A_, 0.0);
+  rho_B_ = std::max(rho_B_, 0.0);
+}
+
+double FacetGraph::lowerBound(const FaceOfM& face) const {
+  // The bounds of penetration_exact.cpp (branchAndBound): h_A(n) >= n . c_A
+  // + rho_A and h_-B(n) >= -n . c_B + rho_B for unit n.
+  const ConvexPolytope& a = pair_.a();
+  const ConvexPolytope& b = pair_.b();
+  if (face.kind == FaceOfM::Kind::kFV && face.a >= 0 && face.a < a.numFaces()) {
+    return a.faceOffset(face.a) - a.faceNormal(face.a).dot(c_B_) + rho_B_;
+  }
+  if (face.kind == FaceOfM::Kind::kVF && face.b >= 0 && face.b < b.numFaces()) {
+    return b.faceOffset(face.b) - b.faceNormal(face.b).dot(c_A_in_B_) + rho_A_;
+  }
+  if (face.kind == FaceOfM::Kind::kEE && face.a >= 0 && face.a < a.numEdges()) {
+    // rho_B + min over the arc of edge a of n . (a - c_B).
+    const ConvexPolytope::Edge& edge = a.edge(face.a);
+    const Eigen::Vector3d q = a.vertex(edge.v0) - c_B_;
+    double low = std::min(q.dot(a.faceNormal(edge.face_left)), q.dot(a.faceNormal(edge.face_right)));
+    const Eigen::Vector3d q_perp = q - q.dot(edge.dir_P) * edge.dir_P;
+    const double norm = q_perp.norm();
+    if (norm > 0.0 && -q_perp.dot(edge.wedge_left_P) >= 0.0 && -q_perp.dot(edge.wedge_right_P) >= 0.0) low = -norm;
+    return low + rho_B_;
+  }
+  return -std::numeric_limits<double>::infinity();
+}
+
+const FacetGraph::EdgeInA& FacetGraph::edgeInA(int e, bool of_b) {
   const ConvexPolytope::Edge& edge = (of_b ? pair_.b() : pair_.a()).edge(e);
-  EdgeInA x;
+  EdgeInA& x = of_b ? edges_b_[static_cast<size_t>(e)] : edge_a_;
+  if (of_b && x.id == e) return x;
   x.id = e;
   if (of_b) {
     x.dir = pair_.bToA(edge.dir_P);
@@ -78,7 +122,7 @@ bool FacetGraph::evalEE(const EdgeInA& ea, const EdgeInA& eb, Node* out) const {
   return true;
 }
 
-bool FacetGraph::evaluate(const Ref& ref, Node* out) const {
+bool FacetGraph::evaluate(const Ref& ref, Node* out) {
   const ConvexPolytope& a = pair_.a();
   const ConvexPolytope& b = pair_.b();
   const FaceOfM& f = ref.face;
@@ -105,7 +149,8 @@ bool FacetGraph::evaluate(const Ref& ref, Node* out) const {
     out->generic = gap > pair_.tieTolerance();
     ok = true;
   } else if (f.kind == FaceOfM::Kind::kEE && f.a >= 0 && f.a < a.numEdges() && f.b >= 0 && f.b < b.numEdges()) {
-    ok = evalEE(edgeInA(f.a, false), edgeInA(f.b, true), out);
+    const EdgeInA& eb = edgeInA(f.b, true);
+    ok = evalEE(edgeInA(f.a, false), eb, out);
   }
   if (stats_ != nullptr) {
     stats_->support_vertices += support.support_vertices;
@@ -114,7 +159,7 @@ bool FacetGraph::evaluate(const Ref& ref, Node* out) const {
   return ok;
 }
 
-void FacetGraph::neighbours(const Node& node, std::vector<Ref>* out) const {
+void FacetGraph::neighbours(const Node& node, std::vector<Ref>* out) {
   const ConvexPolytope& a = pair_.a();
   const ConvexPolytope& b = pair_.b();
   const PdPlane& p = node.plane;
@@ -123,10 +168,12 @@ void FacetGraph::neighbours(const Node& node, std::vector<Ref>* out) const {
   auto fv = [&](int f) { out->push_back({{FaceOfM::Kind::kFV, f, -1}, va, vb}); };
   auto vf = [&](int g) { out->push_back({{FaceOfM::Kind::kVF, -1, g}, va, vb}); };
   auto ee = [&](int ea, int eb) { out->push_back({{FaceOfM::Kind::kEE, ea, eb}, va, vb}); };
-  std::vector<int> ties_a;
-  std::vector<int> ties_b;
-  std::vector<int> edges_a;
-  std::vector<int> edges_b;
+  std::vector<int>& ties_a = ties_a_;
+  std::vector<int>& ties_b = ties_b_;
+  std::vector<int>& edges_a = edges_a_;
+  std::vector<int>& edges_b = edges_b_list_;
+  ties_a.clear();
+  ties_b.clear();
   if (node.generic) {
     // One neighbour across each edge of the facet (MDD-DUAL paper Lemma 7,
     // search.cpp edgeNeighbours): FV(f, v) borders FV(f', v) across an edge
@@ -148,10 +195,12 @@ void FacetGraph::neighbours(const Node& node, std::vector<Ref>* out) const {
       fv(edge_a.face_right);
       vf(edge_b.face_left);
       vf(edge_b.face_right);
-      addEdgesOf(b, {edge_b.v0, edge_b.v1}, &edges_b);
+      const int ends_b[2] = {edge_b.v0, edge_b.v1};
+      addEdgesOf(b, ends_b, ends_b + 2, &edges_b);
       for (int eb : edges_b)
         if (eb != p.face.b) ee(p.face.a, eb);
-      addEdgesOf(a, {edge_a.v0, edge_a.v1}, &edges_a);
+      const int ends_a[2] = {edge_a.v0, edge_a.v1};
+      addEdgesOf(a, ends_a, ends_a + 2, &edges_a);
       for (int ea : edges_a)
         if (ea != p.face.a) ee(ea, p.face.b);
     }

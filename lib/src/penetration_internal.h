@@ -95,13 +95,17 @@ class FacetGraph {
     int hint_b = -1;
   };
 
-  FacetGraph(const PairGeometry& pair, PenetrationStats* stats) : pair_(pair), stats_(stats) {}
+  FacetGraph(const PairGeometry& pair, PenetrationStats* stats);
 
   /// Evaluates the facet named by ref. False when ref names no facet of M
   /// (an edge pair whose arcs do not cross, parallel edges, a bad index).
-  bool evaluate(const Ref& ref, Node* out) const;
+  bool evaluate(const Ref& ref, Node* out);
+  /// A lower bound on the offset of the facet named by ref, from balls inside
+  /// A and B (penetration_exact.cpp, branch and bound): a facet whose bound
+  /// exceeds the search radius need not be evaluated.
+  double lowerBound(const FaceOfM& face) const;
   /// Appends the neighbours of node to out (see the class comment).
-  void neighbours(const Node& node, std::vector<Ref>* out) const;
+  void neighbours(const Node& node, std::vector<Ref>* out);
   /// A key for visited sets.
   static std::uint64_t key(const FaceOfM& f);
 
@@ -110,11 +114,19 @@ class FacetGraph {
     int id = -1;
     Eigen::Vector3d dir, wedge_left, wedge_right, p0;
   };
-  EdgeInA edgeInA(int e, bool of_b) const;
+  /// Edge e of A, or of B expressed in A's frame (computed once per edge).
+  const EdgeInA& edgeInA(int e, bool of_b);
   bool evalEE(const EdgeInA& ea, const EdgeInA& eb, Node* out) const;
 
   const PairGeometry& pair_;
   PenetrationStats* stats_;
+  std::vector<EdgeInA> edges_b_;  ///< B's edges in A's frame, id -1 until computed
+  EdgeInA edge_a_;
+  Eigen::Vector3d c_B_;       ///< B's centroid in A's frame
+  Eigen::Vector3d c_A_in_B_;  ///< A's centroid in B's frame
+  double rho_A_ = 0.0;        ///< radius of a ball around A's centroid inside A
+  double rho_B_ = 0.0;
+  std::vector<int> ties_a_, ties_b_, edges_a_, edges_b_list_;  ///< scratch of neighbours()
 };
 
 // ---- Grid (penetration_grid.cpp) ----------------------------------------------------

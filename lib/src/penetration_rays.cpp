@@ -17,6 +17,68 @@
 namespace mddual::detail {
 namespace {
 
+/// Open-addressing hash set of facet keys for the breadth-first search (a
+/// std::unordered_set allocates a node per insert, which dominated the
+/// search). Per thread, cleared in O(1) by a generation stamp.
+class KeySet {
+ public:
+  void clear() {
+    if (++generation_ == 0) {
+      std::fill(stamps_.begin(), stamps_.end(), 0u);
+      generation_ = 1;
+    }
+    size_ = 0;
+  }
+  /// Inserts key; true when it was not there yet.
+  bool insert(std::uint64_t key) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    const std::size_t mask = keys_.size() - 1;
+    for (std::size_t i = mix(key) & mask;; i = (i + 1) & mask) {
+      if (stamps_[i] != generation_) {
+        stamps_[i] = generation_;
+        keys_[i] = key;
+        ++size_;
+        return true;
+      }
+      if (keys_[i] == key) return false;
+    }
+  }
+
+ private:
+  static std::size_t mix(std::uint64_t x) {  // splitmix64 finaliser
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    x ^= x >> 31;
+    return static_cast<std::size_t>(x);
+  }
+  void grow() {
+    std::vector<std::uint64_t> old_keys;
+    std::vector<std::uint32_t> old_stamps;
+    old_keys.swap(keys_);
+    old_stamps.swap(stamps_);
+    const std::size_t capacity = std::max<std::size_t>(256, 2 * old_keys.size());
+    keys_.assign(capacity, 0);
+    stamps_.assign(capacity, 0);
+    const std::uint32_t live = generation_;
+    size_ = 0;
+    for (std::size_t i = 0; i < old_keys.size(); ++i) {
+      if (old_stamps[i] == live) insert(old_keys[i]);
+    }
+  }
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> stamps_;
+  std::uint32_t generation_ = 1;
+  std::size_t size_ = 0;
+};
+
+KeySet& visitedSet() {
+  thread_local KeySet set;
+  set.clear();
+  return set;
+}
+
 /// The exit facet of a search as a PdPlane, its FaceOfM named as in
 /// penetration.h (FV: b = vertex of B; VF: a = vertex of A).
 PdPlane planeOf(const RayExit& exit) {
@@ -55,12 +117,27 @@ ApproxOutcome approxClosestFacet(const PairGeometry& pair, double delta, Penetra
   // the distance r along the ray (r = h / (n . u) with n . u <= 1).
   const std::vector<Eigen::Vector3d> grid = directionGrid(delta);
   stats->grid_directions += static_cast<int>(grid.size());
+  // Warm start: of the exit facets of the last kWarmWindow shots (the
+  // grid's order puts the previous direction and the previous ring's
+  // neighbours among them), the one whose plane the new ray meets first
+  // (largest phi = n . u / h, known without a search) is the closest to its
+  // exit facet on the dual polytope, so the climb from it is the shortest.
+  constexpr size_t kWarmWindow = 64;
   ApproxOutcome out;
   out.shots.reserve(grid.size());
-  FaceOfM warm;
   for (const Eigen::Vector3d& u : grid) {
+    FaceOfM warm;
+    double best_phi = -std::numeric_limits<double>::infinity();
+    const size_t first = out.shots.size() > kWarmWindow ? out.shots.size() - kWarmWindow : 0;
+    for (size_t i = first; i < out.shots.size(); ++i) {
+      const PdPlane& p = out.shots[i].exit;
+      const double phi = p.n_A.dot(u) / p.h;
+      if (phi > best_phi) {
+        best_phi = phi;
+        warm = p.face;
+      }
+    }
     out.shots.push_back(shoot(pair, u, warm, stats));
-    warm = out.shots.back().exit.face;
     keepCloser(out.shots.back().exit, &out.best);
   }
   return out;
@@ -88,13 +165,16 @@ PdPlane shallowClosestFacet(const PairGeometry& pair, double delta, PenetrationS
   const double keep = (1.0 + 0.25 * delta) * rho;
   // Step 5: breadth-first search from the exit facets of G' over the facets
   // of M with h <= R (every facet evaluated counts toward the minimum).
-  const FacetGraph graph(pair, stats);
-  std::unordered_set<std::uint64_t> visited;
+  FacetGraph graph(pair, stats);
+  KeySet& visited = visitedSet();
   std::vector<FacetGraph::Node> queue;
   std::vector<FacetGraph::Ref> refs;
   PdPlane best = approx.best;
   auto visit = [&](const FacetGraph::Ref& ref) {
-    if (!visited.insert(FacetGraph::key(ref.face)).second) return;
+    if (!visited.insert(FacetGraph::key(ref.face))) return;
+    // A facet whose lower bound exceeds R is neither closest (PD <= rho < R)
+    // nor to be expanded: it need not be evaluated.
+    if (graph.lowerBound(ref.face) > limit) return;
     FacetGraph::Node node;
     if (!graph.evaluate(ref, &node)) return;
     keepCloser(node.plane, &best);

@@ -137,7 +137,9 @@ class FclPenetration final : public PdPeer {
       out.collide = result.isCollision();
       if (out.collide) {
         if (result.numContacts() == 0) throw std::runtime_error(name_ + ": collision without contact");
-        out.depth = result.getContact(0).penetration_depth;
+        // GST_INDEP reports the depth with a negative sign (FCL 0.7's EPA
+        // path negates epa.depth); the magnitude is what is compared.
+        out.depth = std::abs(result.getContact(0).penetration_depth);
       }
     } else {
       fcl::DistanceResult<double> result;

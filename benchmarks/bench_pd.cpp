@@ -25,9 +25,14 @@
 // of --passes passes over the whole set, the timer's overhead subtracted.
 // Errors are |answer - PD| / PD (penetrating queries) and |answer| / scale
 // (touching: PD = 0, scale = the larger radius).
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -348,6 +353,97 @@ Run timeMethod(const std::string& name, size_t count, int passes, double overhea
   return run;
 }
 
+/// timeMethod() for code that may abort the process (FCL's libccd EPA
+/// asserts on some touching pairs, and Debian builds FCL with assertions):
+/// the passes run in a child process that streams one record per query
+/// through a pipe. When the child dies, the query it was on is recorded as a
+/// crash (an exception "process aborted by signal N") and a new child goes on
+/// with the next query; crashed queries are skipped by later passes.
+template <class Call>
+Run timeIsolated(const std::string& name, size_t count, int passes, double overhead_ns, Call&& call) {
+  struct Record {
+    std::int32_t index;
+    std::int32_t kind;  // 0: started, 1: answered, 2: threw
+    double ns;
+    double depth;
+    std::int32_t collide;
+    std::int32_t pass;
+  };
+  Run run;
+  run.name = name;
+  run.ns.assign(count, kNaN);
+  run.answers.resize(count);
+  run.measured = static_cast<int>(count);
+  std::vector<char> crashed(count, 0);
+  for (int pass = 0; pass < passes; ++pass) {
+    size_t next = 0;
+    while (next < count) {
+      int fd[2];
+      if (pipe(fd) != 0) throw std::runtime_error("pipe failed");
+      std::cout.flush();
+      const pid_t pid = fork();
+      if (pid < 0) throw std::runtime_error("fork failed");
+      if (pid == 0) {
+        close(fd[0]);
+        for (size_t q = next; q < count; ++q) {
+          if (crashed[q] != 0) continue;
+          Record r{static_cast<std::int32_t>(q), 0, 0.0, 0.0, 0, pass};
+          if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
+          try {
+            const Clock::time_point t0 = Clock::now();
+            const Answer a = call(q);
+            const Clock::time_point t1 = Clock::now();
+            r.kind = 1;
+            r.ns = std::max(0.0, std::chrono::duration<double, std::nano>(t1 - t0).count() - overhead_ns);
+            r.depth = a.depth;
+            r.collide = a.collide ? 1 : 0;
+          } catch (const std::exception&) {
+            r.kind = 2;
+          }
+          if (write(fd[1], &r, sizeof r) != static_cast<ssize_t>(sizeof r)) _exit(3);
+        }
+        _exit(0);
+      }
+      close(fd[1]);
+      Record r{};
+      long started = -1;
+      while (read(fd[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r)) {
+        const size_t q = static_cast<size_t>(r.index);
+        if (r.kind == 0) {
+          started = r.index;
+          continue;
+        }
+        started = -1;
+        if (r.kind == 2) {
+          if (pass == 0) {
+            run.answers[q].error = true;
+            run.answers[q].message = "exception";
+          }
+          continue;
+        }
+        if (pass == 0) {
+          run.answers[q].depth = r.depth;
+          run.answers[q].collide = r.collide != 0;
+        }
+        if (!(run.ns[q] <= r.ns)) run.ns[q] = r.ns;
+      }
+      close(fd[0]);
+      int status = 0;
+      waitpid(pid, &status, 0);
+      if (started < 0) break;  // the child finished the pass
+      const size_t q = static_cast<size_t>(started);
+      crashed[q] = 1;
+      run.answers[q] = Answer();
+      run.answers[q].error = true;
+      run.answers[q].message =
+          "process aborted by signal " + std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+      run.ns[q] = kNaN;
+      next = q + 1;
+    }
+  }
+  return run;
+}
+
 struct Summary {
   int queries = 0;
   double median_us = kNaN, p90_us = kNaN, mean_us = kNaN;
@@ -476,7 +572,7 @@ Json runGroup(Group& g, const Options& opt, double overhead_ns) {
       return *per_pair[key];
     };
     for (size_t q = 0; q < n; ++q) peer(q);  // build outside the timed calls
-    runs.push_back(timeMethod(peer_name, n, opt.passes, overhead_ns, [&](size_t q) {
+    runs.push_back(timeIsolated(peer_name, n, opt.passes, overhead_ns, [&](size_t q) {
       const mddual::bench::PdAnswer a = peer(q).penetration(g.queries[q].X_WA, g.queries[q].X_WB);
       Answer x;
       x.depth = a.depth;

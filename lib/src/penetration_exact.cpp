@@ -54,8 +54,8 @@
 // in O(1) each, using balls inside A and B, and enumerates exactly only the
 // candidates whose bound is below the best offset found so far (the walk
 // then runs on the surviving arcs only, starting from a support query). The
-// minimum is the same; on the benchmark pairs over 90% of the candidates are
-// skipped.
+// minimum is the same; on the paper's pairs 80 to 97% of the candidates are
+// skipped (more the deeper the bodies' centres lie inside each other).
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -139,9 +139,7 @@ TEST(Penetration, ResultFieldsAreInTheWorldFrame) {
   Rng rng(7);
   const Eigen::Matrix3d R = generators::randomRotation(rng);
   const Eigen::Vector3d p(1e3, -2e3, 5e2);
-  // (Not the brute force: qhull fails on these 64 nearly coplanar points at
-  // this offset, see test_penetration_regressions.cpp.)
-  for (PenetrationMethod m : {PenetrationMethod::kExact, PenetrationMethod::kShallow, PenetrationMethod::kApprox}) {
+  for (PenetrationMethod m : kAllMethods) {
     SCOPED_TRACE(toString(m));
     const PenetrationResult r = pd(cube, pose(R, p), cube, pose(R, p + R * Eigen::Vector3d(0.7, 0.2, 0.0)), m);
     EXPECT_NEAR(r.depth, 0.3, 1e-9);

@@ -21,12 +21,13 @@ PenetrationResult pdOf(const Points& a_pts, const Points& b_pts, PenetrationMeth
   return penetrationDepth(PenetrationInput{&a, I, &b, I, method, delta});
 }
 
-// Core bug (brute force, not this module): two unit cubes in the same random
+// Core bug found here (brute force, not this module), fixed by b1bf5b1 ("Hull:
+// merge coplanar facets inside qhull"): two unit cubes in the same random
 // orientation at an offset of ~2000, B shifted by (0.7, 0.2, 0) in the cubes'
 // frame. MinkowskiDifference::build hulls the 64 vertex differences, many of
 // them coplanar, and ConvexPolytope::fromPoints rejected qhull's answer with
 // "polytope: hull edge 1->2 appears twice" (NumericalError). The fast methods
-// answer 0.3 (to 5e-14). Fixed by merging inside qhull (premerge C-n).
+// answered 0.3 (to 5e-14) all along.
 TEST(PenetrationRegressions, BruteForceOnRotatedCubesFarFromTheOrigin) {
   const Points a = {{1000, -2000, 500},
                     {999.102931576218, -1999.7307660462648, 500.35040165697308},

@@ -1,0 +1,69 @@
+// Scenes built in code, for the tests, the benchmark and demos: the four kinds
+// of planning problems of the planning layer, each seeded and with a size
+// parameter so that the same scene can be scaled up. Each returns the robot,
+// the world, position bounds and the scene's natural space kind (any kind can
+// be used with any scene through makeSpace()).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mddual/planning/state_space.h"
+#include "mddual/scene/scene.h"
+
+namespace mddual::planning::examples {
+
+/// A robot, a world, bounds and the natural space kind.
+struct ExampleScene {
+  std::string name;
+  std::shared_ptr<const scene::RigidBody> robot;
+  std::shared_ptr<const scene::World> world;
+  Eigen::AlignedBox3d bounds;
+  SpaceKind kind = SpaceKind::kSE3;
+};
+
+/// (a) URDF-like primitives: a floor slab, `obstacles` boxes (random sizes and
+/// orientations) and upright "cylinders" (16-gon prisms circumscribing the
+/// circle, as a URDF loader would), all convex pieces; robot: a box base with
+/// a cylinder on top (two convex pieces). Natural space: R^3.
+ExampleScene primitivesScene(std::uint64_t seed, int obstacles = 40);
+
+/// (b) Non-convex meshes as triangles: a room (floor, ceiling, four walls, two
+/// partition walls with door openings, each rectangle two triangles) and
+/// `obstacles` triangulated boxes; robot: an L-shaped prism as 20 triangles.
+/// Natural space: SE(3).
+ExampleScene meshScene(std::uint64_t seed, int obstacles = 20);
+
+/// (c) SE(2): random convex polygons extruded over z in [-0.5, 0.5]; robot: a
+/// T of two extruded rectangles (z in [-0.25, 0.25]). Natural space: SE(2).
+ExampleScene planarScene(std::uint64_t seed, int obstacles = 60);
+
+/// (d) SE(3): random convex blobs (20 to 40 vertices); robot: a blob and a
+/// hexagonal prism. Natural space: SE(3).
+ExampleScene blobScene(std::uint64_t seed, int obstacles = 80);
+
+/// A wall of the given thickness across a long corridor (x in [0, 100], the
+/// wall at x in [50, 50 + thickness]); robot: a cube of side 0.2. Natural
+/// space: R^2 (z = 0). OMPL's default resolution here is about 1.0.
+ExampleScene thinWallScene(double thickness = 0.05);
+
+/// The space of `kind` over the scene's bounds (identity orientation, z = 0
+/// for the translation-only kinds).
+PlanningSpacePtr makeSpace(const ExampleScene& scene, SpaceKind kind);
+inline PlanningSpacePtr makeSpace(const ExampleScene& scene) {
+  return makeSpace(scene, scene.kind);
+}
+
+/// Helpers: a convex piece from points; the 12 triangles of a box; the
+/// triangles of a prism over a simple polygon (counter-clockwise, any shape)
+/// between z0 and z1.
+scene::Piece convexPiece(const std::vector<Eigen::Vector3d>& points, const std::string& origin);
+std::vector<scene::Piece> boxTriangles(const Eigen::Vector3d& half_extents, const Eigen::Isometry3d& X,
+                                       const std::string& origin);
+std::vector<scene::Piece> prismTriangles(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1,
+                                         const std::string& origin);
+
+}  // namespace mddual::planning::examples

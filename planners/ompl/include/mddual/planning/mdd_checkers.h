@@ -1,0 +1,126 @@
+// The OMPL checkers built on MDD-DUAL: MddStateValidityChecker and
+// MddMotionValidator, over an MddScene (robot, world, broad phase, warm
+// starts) and a PlanningSpace (state <-> pose, OMPL's interpolation).
+//
+// Typical set-up:
+//   auto space = PlanningSpace::se3(bounds);
+//   auto si = std::make_shared<ompl::base::SpaceInformation>(space->stateSpace());
+//   auto scene = std::make_shared<MddScene>(robot, world);
+//   si->setStateValidityChecker(std::make_shared<MddStateValidityChecker>(si, space, scene));
+//   si->setMotionValidator(std::make_shared<MddMotionValidator>(si, space, scene));
+//   si->setup();
+//
+// Both are thread-safe: OMPL may call their const methods from several
+// threads (per-thread warm starts live in the MddScene; counters are atomic;
+// OMPL's own valid/invalid motion counters are updated under a mutex).
+#pragma once
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/base/StateValidityChecker.h>
+#include <ompl/util/ClassForward.h>
+#include <memory>
+#include <mutex>
+#include <utility>
+
+#include "mddual/planning/counters.h"
+#include "mddual/planning/mdd_scene.h"
+#include "mddual/planning/state_space.h"
+
+namespace mddual::planning {
+
+OMPL_CLASS_FORWARD(MddStateValidityChecker);
+OMPL_CLASS_FORWARD(MddMotionValidator);
+
+/// State validity on MDD-DUAL. isValid(s) is true iff the state satisfies the
+/// space's bounds (si->satisfiesBounds) and no robot piece touches or overlaps
+/// a world piece at pose(s) (MddScene::collides: the broad phase's candidate
+/// pairs, each with mddual::intersect).
+class MddStateValidityChecker : public ompl::base::StateValidityChecker {
+ public:
+  /// Throws InvalidInputError for a null argument or when si's state space is
+  /// not space->stateSpace().
+  MddStateValidityChecker(const ompl::base::SpaceInformationPtr& si, PlanningSpacePtr space,
+                          std::shared_ptr<const MddScene> scene);
+
+  bool isValid(const ompl::base::State* state) const override;
+
+  CheckerCounts counts() const { return counters_.read(); }
+  void resetCounts() { counters_.reset(); }
+  /// Whether counts().seconds is measured (see CheckerCounters::setTiming).
+  void setTiming(bool on) { counters_.setTiming(on); }
+  const MddScene& scene() const { return *scene_; }
+  const PlanningSpace& planningSpace() const { return *space_; }
+
+ private:
+  PlanningSpacePtr space_;
+  std::shared_ptr<const MddScene> scene_;
+  mutable CheckerCounters counters_;
+};
+
+/// Motion validity on MDD-DUAL, under OMPL's interpolation (PlanningSpace).
+///
+///   - Translation edges (kR2/kR3 spaces; SE(2)/SE(3) edges that do not rotate):
+///     exact. One mddual::toi per candidate pair; the edge is valid iff no
+///     state on it (both ends included) touches the world and both ends are
+///     within bounds.
+///   - Rotating edges: sound, never valid when some interpolated state
+///     collides; may be invalid although the motion is free when it passes
+///     within delta / 2^levels of an obstacle (MddScene's sub-edge scheme).
+///   - checkMotion(s1, s2, lastValid), on an invalid edge: f = the first
+///     invalid fraction (the first contact, exact for translation edges and a
+///     lower bound for rotating ones, or where the position leaves the bounds,
+///     or 1 when s2 is out of bounds otherwise). lastValid.second = f - b for
+///     the smallest b in {1e-9, 1e-8, ...} whose state passes si->isValid;
+///     lastValid.first (when not null) receives that state, interpolated by
+///     OMPL. Every state before it on the edge is valid. When no such b
+///     exists (or f = 0: the start collides or is out of bounds), lastValid =
+///     (copy of s1, 0). On a valid edge lastValid is not touched.
+///   - s1 is not assumed valid: an edge whose start collides is invalid.
+///   - checkMotion(s1, s2) (validity only) first tests s2 and then the middle
+///     state (mddual::intersect, early exit), as OMPL's discrete validator
+///     orders its samples: most invalid edges end after one cheap state test.
+///     Only then the sweep (rotating edges: sub-edges in bisection order, and a
+///     failing coarse sub-edge is settled by a true colliding state before it
+///     is refined). These shortcuts only ever return "invalid" for an edge
+///     with a colliding state, so both overloads give the same answer.
+class MddMotionValidator : public ompl::base::MotionValidator {
+ public:
+  /// Throws InvalidInputError like MddStateValidityChecker.
+  MddMotionValidator(const ompl::base::SpaceInformationPtr& si, PlanningSpacePtr space,
+                     std::shared_ptr<const MddScene> scene);
+
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+  /// The first invalid fraction of an edge (bounds included) and its contact;
+  /// what checkMotion(s1, s2, lastValid) backs off from. fraction = +inf for a
+  /// valid edge.
+  EdgeContact firstInvalid(const ompl::base::State* s1, const ompl::base::State* s2) const;
+
+  CheckerCounts counts() const { return counters_.read(); }
+  void resetCounts() { counters_.reset(); }
+  /// Whether counts().seconds is measured (see CheckerCounters::setTiming).
+  void setTiming(bool on) { counters_.setTiming(on); }
+  const MddScene& scene() const { return *scene_; }
+  const PlanningSpace& planningSpace() const { return *space_; }
+
+ private:
+  EdgeContact evaluate(const ompl::base::State* s1, const ompl::base::State* s2, bool first_contact) const;
+  void countOmpl(bool valid) const;
+
+  PlanningSpacePtr space_;
+  std::shared_ptr<const MddScene> scene_;
+  mutable CheckerCounters counters_;
+  mutable std::mutex ompl_counters_mutex_;
+};
+
+/// Sets lastValid per OMPL's contract for an edge whose first invalid fraction
+/// is `first_invalid` (in [0, 1]): backs off by 1e-9, 1e-8, ... of the edge
+/// until si.isValid() accepts the interpolated state, else (s1, 0). Shared by
+/// the motion validators of this layer.
+void setLastValid(const ompl::base::SpaceInformation& si, const ompl::base::State* s1, const ompl::base::State* s2,
+                  double first_invalid, std::pair<ompl::base::State*, double>& lastValid);
+
+}  // namespace mddual::planning

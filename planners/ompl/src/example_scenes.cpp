@@ -1,0 +1,256 @@
+#include "mddual/planning/example_scenes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+
+#include "mddual/error.h"
+#include "mddual/generators.h"
+
+namespace mddual::planning::examples {
+namespace {
+
+using generators::Rng;
+constexpr double kPi = 3.14159265358979323846;
+
+double uniform(Rng& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+scene::Piece trianglePiece(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                           const std::string& origin) {
+  return scene::Piece::make(ConvexPolytope::fromPoints({a, b, c}), scene::PieceKind::kTriangle, origin);
+}
+
+/// Two triangles of the rectangle corner + s u + t v, s, t in [0, 1].
+void addRectangle(const Eigen::Vector3d& corner, const Eigen::Vector3d& u, const Eigen::Vector3d& v,
+                  const std::string& origin, std::vector<scene::Piece>* out) {
+  out->push_back(trianglePiece(corner, corner + u, corner + u + v, origin));
+  out->push_back(trianglePiece(corner, corner + u + v, corner + v, origin));
+}
+
+double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Ear clipping of a simple counter-clockwise polygon: index triples.
+std::vector<std::array<int, 3>> triangulate(const std::vector<Eigen::Vector2d>& poly) {
+  std::vector<int> idx(poly.size());
+  for (std::size_t i = 0; i < poly.size(); ++i) idx[i] = static_cast<int>(i);
+  std::vector<std::array<int, 3>> out;
+  while (idx.size() > 3) {
+    bool clipped = false;
+    for (std::size_t k = 0; k < idx.size() && !clipped; ++k) {
+      const int a = idx[(k + idx.size() - 1) % idx.size()], b = idx[k], c = idx[(k + 1) % idx.size()];
+      const Eigen::Vector2d &pa = poly[a], &pb = poly[b], &pc = poly[c];
+      if (cross2(pb - pa, pc - pb) <= 0.0) continue;  // reflex
+      bool empty = true;
+      for (int q : idx) {
+        if (q == a || q == b || q == c) continue;
+        const Eigen::Vector2d& p = poly[q];
+        if (cross2(pb - pa, p - pa) >= 0.0 && cross2(pc - pb, p - pb) >= 0.0 && cross2(pa - pc, p - pc) >= 0.0) {
+          empty = false;
+          break;
+        }
+      }
+      if (!empty) continue;
+      out.push_back({a, b, c});
+      idx.erase(idx.begin() + static_cast<std::ptrdiff_t>(k));
+      clipped = true;
+    }
+    if (!clipped) throw InvalidInputError("prismTriangles: the polygon is not simple and counter-clockwise");
+  }
+  out.push_back({idx[0], idx[1], idx[2]});
+  return out;
+}
+
+/// A random convex polygon: hull of random points on a circle of radius r.
+std::vector<Eigen::Vector2d> randomConvexPolygon(Rng& rng, double r) {
+  const int n = std::uniform_int_distribution<int>(4, 8)(rng);
+  std::vector<double> angles;
+  for (int i = 0; i < n; ++i) angles.push_back(uniform(rng, 0.0, 2.0 * kPi));
+  std::sort(angles.begin(), angles.end());
+  std::vector<Eigen::Vector2d> out;
+  for (double a : angles) out.emplace_back(r * std::cos(a), r * std::sin(a));
+  return out;
+}
+
+std::vector<Eigen::Vector3d> extrude(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1) {
+  std::vector<Eigen::Vector3d> out;
+  for (const Eigen::Vector2d& p : polygon) {
+    out.emplace_back(p.x(), p.y(), z0);
+    out.emplace_back(p.x(), p.y(), z1);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> transformed(const std::vector<Eigen::Vector3d>& points, const Eigen::Isometry3d& X) {
+  std::vector<Eigen::Vector3d> out;
+  for (const Eigen::Vector3d& p : points) out.push_back(X * p);
+  return out;
+}
+
+Eigen::Isometry3d translation(const Eigen::Vector3d& p) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = p;
+  return X;
+}
+
+ExampleScene make(std::string name, std::vector<scene::Piece> robot, std::vector<scene::Piece> world,
+                  const Eigen::AlignedBox3d& bounds, SpaceKind kind) {
+  ExampleScene s;
+  s.robot = std::make_shared<scene::RigidBody>(std::move(robot), name + " robot");
+  s.world = std::make_shared<scene::World>(std::move(world), name + " world");
+  s.name = std::move(name);
+  s.bounds = bounds;
+  s.kind = kind;
+  return s;
+}
+
+}  // namespace
+
+scene::Piece convexPiece(const std::vector<Eigen::Vector3d>& points, const std::string& origin) {
+  return scene::Piece::make(ConvexPolytope::fromPoints(points), scene::PieceKind::kConvex, origin);
+}
+
+std::vector<scene::Piece> boxTriangles(const Eigen::Vector3d& h, const Eigen::Isometry3d& X,
+                                       const std::string& origin) {
+  std::vector<scene::Piece> out;
+  const Eigen::Matrix3d R = X.linear();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    for (double side : {-1.0, 1.0}) {
+      const Eigen::Vector3d n = side * h[axis] * R.col(axis);
+      const Eigen::Vector3d u = 2.0 * h[a] * R.col(a), v = 2.0 * h[b] * R.col(b);
+      addRectangle(X.translation() + n - 0.5 * u - 0.5 * v, u, v, origin, &out);
+    }
+  }
+  return out;
+}
+
+std::vector<scene::Piece> prismTriangles(const std::vector<Eigen::Vector2d>& polygon, double z0, double z1,
+                                         const std::string& origin) {
+  std::vector<scene::Piece> out;
+  const auto at = [&](int i, double z) { return Eigen::Vector3d(polygon[i].x(), polygon[i].y(), z); };
+  for (const auto& t : triangulate(polygon)) {
+    out.push_back(trianglePiece(at(t[0], z0), at(t[2], z0), at(t[1], z0), origin + " bottom"));
+    out.push_back(trianglePiece(at(t[0], z1), at(t[1], z1), at(t[2], z1), origin + " top"));
+  }
+  const int n = static_cast<int>(polygon.size());
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d a = at(i, z0), b = at((i + 1) % n, z0);
+    addRectangle(a, b - a, Eigen::Vector3d(0, 0, z1 - z0), origin + " side", &out);
+  }
+  return out;
+}
+
+ExampleScene primitivesScene(std::uint64_t seed, int obstacles) {
+  Rng rng(seed);
+  std::vector<scene::Piece> world;
+  world.push_back(
+      convexPiece(transformed(generators::box({20.0, 20.0, 0.5}), translation({0, 0, -0.5})), "floor (box)"));
+  const double circumscribe = 1.0 / std::cos(kPi / 16.0);  // 16-gon around the circle
+  for (int i = 0; i < obstacles; ++i) {
+    const Eigen::Vector3d at(uniform(rng, -18, 18), uniform(rng, -18, 18), 0.0);
+    if (i % 2 == 0) {
+      const Eigen::Vector3d h(uniform(rng, 0.3, 2.0), uniform(rng, 0.3, 2.0), uniform(rng, 0.3, 3.0));
+      Eigen::Isometry3d X = translation(at + Eigen::Vector3d(0, 0, uniform(rng, 0.0, 5.0)));
+      X.linear() = generators::randomRotation(rng);
+      world.push_back(convexPiece(transformed(generators::box(h), X), "box " + std::to_string(i)));
+    } else {
+      const double r = uniform(rng, 0.2, 1.0), height = uniform(rng, 1.0, 8.0);
+      const Eigen::Isometry3d X = translation(at + Eigen::Vector3d(0, 0, 0.5 * height));
+      world.push_back(convexPiece(transformed(generators::prism(16, r * circumscribe, height), X),
+                                  "cylinder " + std::to_string(i)));
+    }
+  }
+  std::vector<scene::Piece> robot;
+  robot.push_back(convexPiece(generators::box({0.5, 0.3, 0.2}), "base (box)"));
+  robot.push_back(convexPiece(transformed(generators::prism(16, 0.2 * circumscribe, 0.6), translation({0.2, 0, 0.5})),
+                              "mast (cylinder)"));
+  return make("primitives", std::move(robot), std::move(world),
+              Eigen::AlignedBox3d(Eigen::Vector3d(-20, -20, 0.1), Eigen::Vector3d(20, 20, 8)), SpaceKind::kR3);
+}
+
+ExampleScene meshScene(std::uint64_t seed, int obstacles) {
+  Rng rng(seed);
+  std::vector<scene::Piece> world;
+  const double L = 10.0, H = 6.0;
+  addRectangle({-L, -L, 0}, {2 * L, 0, 0}, {0, 2 * L, 0}, "floor", &world);
+  addRectangle({-L, -L, H}, {2 * L, 0, 0}, {0, 2 * L, 0}, "ceiling", &world);
+  addRectangle({-L, -L, 0}, {2 * L, 0, 0}, {0, 0, H}, "wall -y", &world);
+  addRectangle({-L, L, 0}, {2 * L, 0, 0}, {0, 0, H}, "wall +y", &world);
+  addRectangle({-L, -L, 0}, {0, 2 * L, 0}, {0, 0, H}, "wall -x", &world);
+  addRectangle({L, -L, 0}, {0, 2 * L, 0}, {0, 0, H}, "wall +x", &world);
+  for (double x : {-3.0, 4.0}) {  // partition walls, door 2.4 wide and 3 high at y = d
+    const double d = uniform(rng, -6.0, 6.0);
+    addRectangle({x, -L, 0}, {0, d - 1.2 + L, 0}, {0, 0, H}, "partition", &world);
+    addRectangle({x, d + 1.2, 0}, {0, L - d - 1.2, 0}, {0, 0, H}, "partition", &world);
+    addRectangle({x, d - 1.2, 3.0}, {0, 2.4, 0}, {0, 0, H - 3.0}, "partition lintel", &world);
+  }
+  for (int i = 0; i < obstacles; ++i) {
+    const Eigen::Vector3d h(uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 1.5));
+    Eigen::Isometry3d X = translation({uniform(rng, -9, 9), uniform(rng, -9, 9), uniform(rng, 0.5, 5.5)});
+    X.linear() = generators::randomRotation(rng);
+    for (scene::Piece& p : boxTriangles(h, X, "mesh box " + std::to_string(i))) world.push_back(std::move(p));
+  }
+  // An L of arms 2 and width 0.6, centred near its vertex mean, 0.6 thick.
+  std::vector<Eigen::Vector2d> ell = {{0, 0}, {2, 0}, {2, 0.6}, {0.6, 0.6}, {0.6, 2}, {0, 2}};
+  for (Eigen::Vector2d& p : ell) p -= Eigen::Vector2d(0.8, 0.8);
+  return make("mesh", prismTriangles(ell, -0.3, 0.3, "L robot"), std::move(world),
+              Eigen::AlignedBox3d(Eigen::Vector3d(-9.5, -9.5, 0.5), Eigen::Vector3d(9.5, 9.5, 5.5)), SpaceKind::kSE3);
+}
+
+ExampleScene planarScene(std::uint64_t seed, int obstacles) {
+  Rng rng(seed);
+  std::vector<scene::Piece> world;
+  for (int i = 0; i < obstacles; ++i) {
+    std::vector<Eigen::Vector2d> poly = randomConvexPolygon(rng, uniform(rng, 0.5, 2.5));
+    const Eigen::Vector2d at(uniform(rng, -19, 19), uniform(rng, -19, 19));
+    for (Eigen::Vector2d& p : poly) p += at;
+    world.push_back(convexPiece(extrude(poly, -0.5, 0.5), "polygon " + std::to_string(i)));
+  }
+  std::vector<scene::Piece> robot;
+  robot.push_back(convexPiece(generators::box({1.0, 0.15, 0.25}), "T bar"));
+  robot.push_back(convexPiece(transformed(generators::box({0.15, 0.5, 0.25}), translation({0, -0.6, 0})), "T stem"));
+  return make("planar", std::move(robot), std::move(world),
+              Eigen::AlignedBox3d(Eigen::Vector3d(-20, -20, -1), Eigen::Vector3d(20, 20, 1)), SpaceKind::kSE2);
+}
+
+ExampleScene blobScene(std::uint64_t seed, int obstacles) {
+  Rng rng(seed);
+  std::vector<scene::Piece> world;
+  for (int i = 0; i < obstacles; ++i) {
+    const Eigen::Vector3d axes(uniform(rng, 0.5, 2.5), uniform(rng, 0.5, 2.5), uniform(rng, 0.5, 2.5));
+    const int n = std::uniform_int_distribution<int>(20, 40)(rng);
+    Eigen::Isometry3d X = translation({uniform(rng, -14, 14), uniform(rng, -14, 14), uniform(rng, -14, 14)});
+    X.linear() = generators::randomRotation(rng);
+    world.push_back(convexPiece(transformed(generators::blob(n, axes, rng), X), "blob " + std::to_string(i)));
+  }
+  std::vector<scene::Piece> robot;
+  robot.push_back(convexPiece(generators::blob(30, {0.8, 0.5, 0.4}, rng), "robot blob"));
+  robot.push_back(
+      convexPiece(transformed(generators::prism(6, 0.25, 1.2), translation({0.6, 0.0, 0.3})), "robot prism"));
+  return make("blobs", std::move(robot), std::move(world),
+              Eigen::AlignedBox3d(Eigen::Vector3d(-15, -15, -15), Eigen::Vector3d(15, 15, 15)), SpaceKind::kSE3);
+}
+
+ExampleScene thinWallScene(double thickness) {
+  if (!(thickness > 0.0)) throw InvalidInputError("thinWallScene: the thickness must be positive");
+  std::vector<scene::Piece> world;
+  const double x0 = 50.0;
+  world.push_back(
+      convexPiece(transformed(generators::box({0.5 * thickness, 10.0, 1.0}), translation({x0 + 0.5 * thickness, 0, 0})),
+                  "thin wall"));
+  std::vector<scene::Piece> robot;
+  robot.push_back(convexPiece(generators::box({0.1, 0.1, 0.1}), "cube"));
+  return make("thin wall", std::move(robot), std::move(world),
+              Eigen::AlignedBox3d(Eigen::Vector3d(0, -5, -1), Eigen::Vector3d(100, 5, 1)), SpaceKind::kR2);
+}
+
+PlanningSpacePtr makeSpace(const ExampleScene& scene, SpaceKind kind) {
+  return PlanningSpace::make(kind, scene.bounds);
+}
+
+}  // namespace mddual::planning::examples

@@ -1,0 +1,167 @@
+#include "mddual/planning/mdd_checkers.h"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "mddual/error.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// lastValid back-off: first step and growth (fractions of the edge).
+constexpr double kFirstBackoff = 1e-9;
+constexpr double kBackoffGrowth = 10.0;
+
+void checkArguments(const char* who, const ob::SpaceInformationPtr& si, const PlanningSpacePtr& space,
+                    const void* scene) {
+  const std::string name(who);
+  if (!si) throw InvalidInputError(name + ": the SpaceInformation is null");
+  if (!space) throw InvalidInputError(name + ": the PlanningSpace is null");
+  if (!scene) throw InvalidInputError(name + ": the scene is null");
+  if (si->getStateSpace() != space->stateSpace()) {
+    throw InvalidInputError(name + ": the SpaceInformation's state space is not the PlanningSpace's (" +
+                            si->getStateSpace()->getName() + " vs " + space->stateSpace()->getName() + ")");
+  }
+}
+
+}  // namespace
+
+void setLastValid(const ob::SpaceInformation& si, const ob::State* s1, const ob::State* s2, double first_invalid,
+                  std::pair<ob::State*, double>& lastValid) {
+  ob::State* state = lastValid.first ? lastValid.first : si.allocState();
+  double t = 0.0;
+  if (first_invalid > 0.0) {
+    for (double backoff = kFirstBackoff; backoff < first_invalid; backoff *= kBackoffGrowth) {
+      const double candidate = first_invalid - backoff;
+      si.getStateSpace()->interpolate(s1, s2, candidate, state);
+      if (si.isValid(state)) {
+        t = candidate;
+        break;
+      }
+    }
+  }
+  if (t == 0.0) si.copyState(state, s1);
+  lastValid.second = t;
+  if (!lastValid.first) si.freeState(state);
+}
+
+// ---- MddStateValidityChecker -------------------------------------------------------
+
+MddStateValidityChecker::MddStateValidityChecker(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
+                                                 std::shared_ptr<const MddScene> scene)
+    : ob::StateValidityChecker(si), space_(std::move(space)), scene_(std::move(scene)) {
+  checkArguments("MddStateValidityChecker", si, space_, scene_.get());
+}
+
+bool MddStateValidityChecker::isValid(const ob::State* state) const {
+  CheckerCounters::Timer timer(counters_);
+  counters_.addStateCheck();
+  if (!si_->satisfiesBounds(state)) return false;
+  int queries = 0;
+  const bool hit = scene_->collides(space_->pose(state), &queries);
+  counters_.addPairQueries(static_cast<std::uint64_t>(queries));
+  return !hit;
+}
+
+// ---- MddMotionValidator ----------------------------------------------------------
+
+MddMotionValidator::MddMotionValidator(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
+                                       std::shared_ptr<const MddScene> scene)
+    : ob::MotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
+  checkArguments("MddMotionValidator", si, space_, scene_.get());
+}
+
+void MddMotionValidator::countOmpl(bool valid) const {
+  // OMPL's counters are plain members of the base class: serialise updates.
+  std::lock_guard<std::mutex> lock(ompl_counters_mutex_);
+  if (valid) {
+    ++valid_;
+  } else {
+    ++invalid_;
+  }
+}
+
+EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s2, bool first_contact) const {
+  EdgeContact out;
+  if (!si_->satisfiesBounds(s1)) {
+    out.collides = true;
+    out.start_collides = true;
+    out.fraction = 0.0;
+    return out;
+  }
+  const EdgeMotion motion = space_->motion(s1, s2);
+  if (!first_contact && si_->satisfiesBounds(s2)) {
+    // As OMPL's validators do: the end state first. Invalid edges often end in
+    // collision, and a state test (intersect, early exit) is cheaper than
+    // sweeping every candidate pair.
+    int queries = 0;
+    const bool end_collides = scene_->collides(motion.X_end, &queries);
+    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
+    if (end_collides) {
+      out.collides = true;
+      out.fraction = 1.0;  // some state collides; the first contact is not computed here
+      return out;
+    }
+    queries = 0;
+    const bool middle_collides = scene_->collides(motion.pose(0.5), &queries);
+    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
+    if (middle_collides) {
+      out.collides = true;
+      out.fraction = 0.5;
+      return out;
+    }
+  }
+  double bounds_exit = kInf;
+  if (!si_->satisfiesBounds(s2)) {
+    bounds_exit = space_->boundsExitFraction(motion.p_start, motion.p_end);
+    if (!(bounds_exit <= 1.0)) bounds_exit = 1.0;  // out of bounds otherwise (angle, quaternion norm): s2 only
+    if (!first_contact) {
+      out.collides = true;
+      out.fraction = bounds_exit;
+      return out;
+    }
+  }
+  out = scene_->checkEdge(motion, first_contact);
+  counters_.addPairQueries(static_cast<std::uint64_t>(out.pair_queries));
+  counters_.addSubEdges(static_cast<std::uint64_t>(out.sub_edges));
+  if (bounds_exit < out.fraction) {
+    out.collides = true;
+    out.fraction = bounds_exit;
+    out.exact = true;
+    out.start_collides = false;  // s1 is within bounds and was not found colliding before the exit
+    out.contact = PieceContact();
+  }
+  return out;
+}
+
+EdgeContact MddMotionValidator::firstInvalid(const ob::State* s1, const ob::State* s2) const {
+  return evaluate(s1, s2, true);
+}
+
+bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
+  CheckerCounters::Timer timer(counters_);
+  counters_.addMotionCheck();
+  const bool valid = !evaluate(s1, s2, false).collides;
+  countOmpl(valid);
+  return valid;
+}
+
+bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
+                                     std::pair<ob::State*, double>& lastValid) const {
+  CheckerCounters::Timer timer(counters_);
+  counters_.addMotionCheck();
+  const EdgeContact e = evaluate(s1, s2, true);
+  if (!e.collides) {
+    countOmpl(true);
+    return true;
+  }
+  setLastValid(*si_, s1, s2, e.fraction, lastValid);
+  countOmpl(false);
+  return false;
+}
+
+}  // namespace mddual::planning

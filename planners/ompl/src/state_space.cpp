@@ -1,0 +1,305 @@
+#include "mddual/planning/state_space.h"
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "mddual/error.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
+/// OMPL's MAX_QUATERNION_NORM_ERROR (SO3StateSpace.cpp): below 1 - this, the
+/// slerp of SO3StateSpace::interpolate is replaced by a copy of the start.
+constexpr double kOmplQuaternionTolerance = 1e-9;
+/// setPose(): how far a pose may be from the space's poses (rotation matrix
+/// entries, and z relative to 1 + |p|).
+constexpr double kPoseTolerance = 1e-9;
+
+std::string str(const Eigen::Vector3d& v) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return out.str();
+}
+
+void checkBounds(const Eigen::AlignedBox3d& bounds, int dims) {
+  for (int k = 0; k < dims; ++k) {
+    const double lo = bounds.min()[k];
+    const double hi = bounds.max()[k];
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
+      throw InvalidInputError("PlanningSpace: position bounds " + str(bounds.min()) + " to " + str(bounds.max()) +
+                              " are empty or not finite along axis " + std::to_string(k) + " (need min < max)");
+    }
+  }
+}
+
+Eigen::Quaterniond unitQuaternion(const Eigen::Quaterniond& q, const char* what) {
+  const double n = q.norm();
+  if (!std::isfinite(n) || n < 1e-12) {
+    throw InvalidInputError(std::string("PlanningSpace: ") + what + " is zero or not finite");
+  }
+  return Eigen::Quaterniond(q.coeffs() / n);
+}
+
+/// Raw components of an OMPL quaternion state, as OMPL stores them.
+Eigen::Vector4d rawQuaternion(const ob::SO3StateSpace::StateType& q) {
+  return {q.x, q.y, q.z, q.w};
+}
+
+Eigen::Quaterniond toEigen(const ob::SO3StateSpace::StateType& q) {
+  Eigen::Quaterniond e(q.w, q.x, q.y, q.z);
+  const double n = e.norm();
+  if (n > 0.0 && std::isfinite(n)) e.coeffs() /= n;
+  return e;
+}
+
+}  // namespace
+
+const char* toString(SpaceKind kind) {
+  switch (kind) {
+    case SpaceKind::kSE2: return "SE2";
+    case SpaceKind::kSE3: return "SE3";
+    case SpaceKind::kR2: return "R2";
+    case SpaceKind::kR3: return "R3";
+  }
+  return "?";
+}
+
+// ---- EdgeMotion ------------------------------------------------------------------
+
+Eigen::Quaterniond EdgeMotion::orientation(double t) const {
+  if (angle == 0.0) return q_start;
+  return q_start * Eigen::Quaterniond(Eigen::AngleAxisd(t * angle, axis_R));
+}
+
+Eigen::Isometry3d EdgeMotion::pose(double t) const {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = angle == 0.0 ? R_start : orientation(t).toRotationMatrix();
+  X.translation() = position(t);
+  return X;
+}
+
+bool EdgeMotion::endDiffers() const {
+  if (X_end.translation() != p_end) return true;
+  if (angle == 0.0) return X_end.linear() != R_start;
+  return X_end.linear() != orientation(1.0).toRotationMatrix();
+}
+
+// ---- PlanningSpace ---------------------------------------------------------------
+
+PlanningSpace::PlanningSpace(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z,
+                             const Eigen::Quaterniond& q_WR)
+    : kind_(kind), bounds_(bounds) {
+  position_dims_ = (kind == SpaceKind::kSE2 || kind == SpaceKind::kR2) ? 2 : 3;
+  checkBounds(bounds, position_dims_);
+  if (kind == SpaceKind::kR2 || kind == SpaceKind::kR3) {
+    q_fixed_ = unitQuaternion(q_WR, "the fixed orientation");
+    R_fixed_ = q_fixed_.toRotationMatrix();
+  }
+  if (kind == SpaceKind::kR2) {
+    if (!std::isfinite(z)) throw InvalidInputError("PlanningSpace::r2: the fixed z is not finite");
+    z_fixed_ = z;
+  }
+  ob::RealVectorBounds rb(static_cast<unsigned int>(position_dims_));
+  for (int k = 0; k < position_dims_; ++k) {
+    rb.setLow(static_cast<unsigned int>(k), bounds.min()[k]);
+    rb.setHigh(static_cast<unsigned int>(k), bounds.max()[k]);
+  }
+  switch (kind) {
+    case SpaceKind::kSE2: {
+      auto s = std::make_shared<ob::SE2StateSpace>();
+      s->setBounds(rb);
+      space_ = s;
+      break;
+    }
+    case SpaceKind::kSE3: {
+      auto s = std::make_shared<ob::SE3StateSpace>();
+      s->setBounds(rb);
+      space_ = s;
+      break;
+    }
+    case SpaceKind::kR2:
+    case SpaceKind::kR3: {
+      auto s = std::make_shared<ob::RealVectorStateSpace>(static_cast<unsigned int>(position_dims_));
+      s->setBounds(rb);
+      space_ = s;
+      break;
+    }
+  }
+}
+
+PlanningSpacePtr PlanningSpace::make(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z,
+                                     const Eigen::Quaterniond& q_WR) {
+  return PlanningSpacePtr(new PlanningSpace(kind, bounds, z, q_WR));
+}
+PlanningSpacePtr PlanningSpace::se2(const Eigen::AlignedBox3d& bounds) {
+  return make(SpaceKind::kSE2, bounds);
+}
+PlanningSpacePtr PlanningSpace::se3(const Eigen::AlignedBox3d& bounds) {
+  return make(SpaceKind::kSE3, bounds);
+}
+PlanningSpacePtr PlanningSpace::r2(const Eigen::AlignedBox3d& bounds, double z, const Eigen::Quaterniond& q_WR) {
+  return make(SpaceKind::kR2, bounds, z, q_WR);
+}
+PlanningSpacePtr PlanningSpace::r3(const Eigen::AlignedBox3d& bounds, const Eigen::Quaterniond& q_WR) {
+  return make(SpaceKind::kR3, bounds, 0.0, q_WR);
+}
+
+Eigen::Isometry3d PlanningSpace::pose(const ob::State* state) const {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  switch (kind_) {
+    case SpaceKind::kSE2: {
+      const auto* s = state->as<ob::SE2StateSpace::StateType>();
+      X.linear() = Eigen::AngleAxisd(s->getYaw(), Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      X.translation() = Eigen::Vector3d(s->getX(), s->getY(), 0.0);
+      break;
+    }
+    case SpaceKind::kSE3: {
+      const auto* s = state->as<ob::SE3StateSpace::StateType>();
+      X.linear() = toEigen(s->rotation()).toRotationMatrix();
+      X.translation() = Eigen::Vector3d(s->getX(), s->getY(), s->getZ());
+      break;
+    }
+    case SpaceKind::kR2: {
+      const double* v = state->as<ob::RealVectorStateSpace::StateType>()->values;
+      X.linear() = R_fixed_;
+      X.translation() = Eigen::Vector3d(v[0], v[1], z_fixed_);
+      break;
+    }
+    case SpaceKind::kR3: {
+      const double* v = state->as<ob::RealVectorStateSpace::StateType>()->values;
+      X.linear() = R_fixed_;
+      X.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+      break;
+    }
+  }
+  return X;
+}
+
+void PlanningSpace::setPose(const Eigen::Isometry3d& X_WR, ob::State* state) const {
+  const Eigen::Vector3d p = X_WR.translation();
+  const Eigen::Matrix3d R = X_WR.linear();
+  if (!p.allFinite() || !R.allFinite()) throw InvalidInputError("PlanningSpace::setPose: the pose is not finite");
+  if (!(R.transpose() * R - Eigen::Matrix3d::Identity()).isZero(kPoseTolerance) || R.determinant() < 0.0) {
+    throw InvalidInputError("PlanningSpace::setPose: the pose's linear part is not a rotation");
+  }
+  const double z_tol = kPoseTolerance * (1.0 + p.norm());
+  switch (kind_) {
+    case SpaceKind::kSE2: {
+      if (std::abs(R(2, 2) - 1.0) > kPoseTolerance || std::abs(p.z()) > z_tol) {
+        throw InvalidInputError("PlanningSpace::setPose: an SE2 pose rotates about +z only and has z = 0; got z = " +
+                                std::to_string(p.z()) + ", R(2,2) = " + std::to_string(R(2, 2)));
+      }
+      auto* s = state->as<ob::SE2StateSpace::StateType>();
+      s->setXY(p.x(), p.y());
+      s->setYaw(std::atan2(R(1, 0), R(0, 0)));
+      break;
+    }
+    case SpaceKind::kSE3: {
+      auto* s = state->as<ob::SE3StateSpace::StateType>();
+      s->setXYZ(p.x(), p.y(), p.z());
+      Eigen::Quaterniond q(R);
+      q.normalize();
+      s->rotation().x = q.x();
+      s->rotation().y = q.y();
+      s->rotation().z = q.z();
+      s->rotation().w = q.w();
+      break;
+    }
+    case SpaceKind::kR2:
+    case SpaceKind::kR3: {
+      if (!(R - R_fixed_).isZero(kPoseTolerance)) {
+        throw InvalidInputError(std::string("PlanningSpace::setPose: a ") + toString(kind_) +
+                                " pose has the space's fixed orientation");
+      }
+      if (kind_ == SpaceKind::kR2 && std::abs(p.z() - z_fixed_) > z_tol) {
+        throw InvalidInputError("PlanningSpace::setPose: an R2 pose has z = " + std::to_string(z_fixed_) + "; got " +
+                                std::to_string(p.z()));
+      }
+      double* v = state->as<ob::RealVectorStateSpace::StateType>()->values;
+      v[0] = p.x();
+      v[1] = p.y();
+      if (kind_ == SpaceKind::kR3) v[2] = p.z();
+      break;
+    }
+  }
+}
+
+EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const {
+  EdgeMotion m;
+  const Eigen::Isometry3d X1 = pose(s1);
+  m.X_end = pose(s2);
+  m.p_start = X1.translation();
+  m.p_end = m.X_end.translation();
+  m.R_start = X1.linear();
+  switch (kind_) {
+    case SpaceKind::kSE2: {
+      // SO2StateSpace::interpolate: the shorter way, |diff| <= pi going forward.
+      const double yaw1 = s1->as<ob::SE2StateSpace::StateType>()->getYaw();
+      const double yaw2 = s2->as<ob::SE2StateSpace::StateType>()->getYaw();
+      double diff = yaw2 - yaw1;
+      if (std::abs(diff) > kPi) diff = diff > 0.0 ? diff - 2.0 * kPi : diff + 2.0 * kPi;
+      if (std::abs(diff) >= kMinRotationAngle) {
+        m.angle = std::abs(diff);
+        m.axis_R = Eigen::Vector3d(0.0, 0.0, diff > 0.0 ? 1.0 : -1.0);
+      }
+      m.q_start = Eigen::Quaterniond(Eigen::AngleAxisd(yaw1, Eigen::Vector3d::UnitZ()));
+      break;
+    }
+    case SpaceKind::kSE3: {
+      const auto& r1 = s1->as<ob::SE3StateSpace::StateType>()->rotation();
+      const auto& r2 = s2->as<ob::SE3StateSpace::StateType>()->rotation();
+      m.q_start = toEigen(r1);
+      const double dq = rawQuaternion(r1).dot(rawQuaternion(r2));
+      // SO3StateSpace's arcLength(): 0 when |dq| > 1 - 1e-9, then interpolate() copies q1.
+      if (std::abs(dq) <= 1.0 - kOmplQuaternionTolerance) {
+        const double theta = std::acos(std::abs(dq));
+        Eigen::Quaterniond q1 = toEigen(r1);
+        Eigen::Quaterniond q2 = toEigen(r2);
+        if (dq < 0.0) q2.coeffs() = -q2.coeffs();
+        const Eigen::Quaterniond rel = q1.conjugate() * q2;  // w >= 0: the shorter arc
+        const double n = rel.vec().norm();
+        if (n > 0.0) {
+          m.angle = 2.0 * theta;
+          m.axis_R = rel.vec() / n;
+        }
+        m.q_start = q1;
+      }
+      break;
+    }
+    case SpaceKind::kR2:
+    case SpaceKind::kR3: m.q_start = q_fixed_; break;
+  }
+  return m;
+}
+
+bool PlanningSpace::positionInBounds(const Eigen::Vector3d& p) const {
+  // RealVectorStateSpace::satisfiesBounds, with its epsilon slack.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  for (int k = 0; k < position_dims_; ++k) {
+    if (p[k] - eps > bounds_.max()[k] || p[k] + eps < bounds_.min()[k]) return false;
+  }
+  return true;
+}
+
+double PlanningSpace::boundsExitFraction(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) const {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  double exit = kInf;
+  for (int k = 0; k < position_dims_; ++k) {
+    const double d = p2[k] - p1[k];
+    if (d > 0.0 && p2[k] - eps > bounds_.max()[k]) exit = std::min(exit, (bounds_.max()[k] + eps - p1[k]) / d);
+    if (d < 0.0 && p2[k] + eps < bounds_.min()[k]) exit = std::min(exit, (bounds_.min()[k] - eps - p1[k]) / d);
+  }
+  return exit == kInf ? kInf : std::max(0.0, exit);
+}
+
+}  // namespace mddual::planning

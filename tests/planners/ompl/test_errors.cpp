@@ -1,0 +1,126 @@
+// Every documented error of the OMPL layer: an mddual::InvalidInputError whose
+// message names what is wrong.
+#include <gtest/gtest.h>
+
+#include <ompl/base/ScopedState.h>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "mddual/error.h"
+#include "mddual/generators.h"
+#include "mddual/planning/clearance.h"
+#include "test_support.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Runs f, expects InvalidInputError with `needle` in its message.
+template <typename F>
+void expectError(F&& f, const std::string& needle) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one mentioning '" << needle << "'";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << "message: " << e.what();
+  }
+}
+
+const Eigen::AlignedBox3d kBounds(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
+
+TEST(Errors, PlanningSpace) {
+  expectError([] { PlanningSpace::se3(Eigen::AlignedBox3d()); }, "bounds");  // empty box
+  expectError([] { PlanningSpace::se2(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0))); },
+              "axis 1");
+  expectError([] { PlanningSpace::r3(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, kInf, 1))); },
+              "not finite");
+  // SE(2)/R(2) ignore z's bounds.
+  EXPECT_NO_THROW(PlanningSpace::se2(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 0))));
+  expectError([] { PlanningSpace::r3(kBounds, Eigen::Quaterniond(0, 0, 0, 0)); }, "fixed orientation");
+  expectError([] { PlanningSpace::r2(kBounds, kNaN); }, "fixed z");
+}
+
+TEST(Errors, SetPose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  const PlanningSpacePtr se2 = PlanningSpace::se2(kBounds);
+  ob::ScopedState<> s(se2->stateSpace());
+  X.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  expectError([&] { se2->setPose(X, s.get()); }, "rotates about +z");
+  X.linear().setIdentity();
+  X.translation().z() = 0.1;
+  expectError([&] { se2->setPose(X, s.get()); }, "z = 0");
+  X.translation().z() = kNaN;
+  expectError([&] { se2->setPose(X, s.get()); }, "not finite");
+  X.translation().setZero();
+  X.linear() = 2.0 * Eigen::Matrix3d::Identity();
+  expectError([&] { se2->setPose(X, s.get()); }, "not a rotation");
+
+  const PlanningSpacePtr r3 = PlanningSpace::r3(kBounds);
+  ob::ScopedState<> t(r3->stateSpace());
+  X.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  expectError([&] { r3->setPose(X, t.get()); }, "fixed orientation");
+  const PlanningSpacePtr r2 = PlanningSpace::r2(kBounds, 0.5);
+  ob::ScopedState<> u(r2->stateSpace());
+  X.linear().setIdentity();
+  expectError([&] { r2->setPose(X, u.get()); }, "z = 0.5");
+}
+
+TEST(Errors, SceneAndCheckers) {
+  const examples::ExampleScene scene = examples::thinWallScene(0.05);
+  expectError([&] { MddScene(nullptr, scene.world); }, "robot is null");
+  expectError([&] { MddScene(scene.robot, nullptr); }, "world is null");
+  MddSceneOptions bad;
+  bad.rotation_tolerance = kNaN;
+  expectError([&] { MddScene(scene.robot, scene.world, bad); }, "not finite");
+  bad.rotation_tolerance = 1e-9;
+  expectError([&] { MddScene(scene.robot, scene.world, bad); }, "below 1e-6");
+  bad.rotation_tolerance = 0.0;
+  bad.refinement_levels = 9;
+  expectError([&] { MddScene(scene.robot, scene.world, bad); }, "refinement_levels");
+  expectError([&] { FclScene(nullptr, scene.world); }, "robot is null");
+  expectError([&] { FclScene(scene.robot, nullptr); }, "world is null");
+
+  const testing::Fixture fx = testing::makeFixture(scene);
+  const auto other = std::make_shared<ob::SpaceInformation>(PlanningSpace::r2(scene.bounds)->stateSpace());
+  expectError([&] { MddStateValidityChecker(nullptr, fx.space, fx.mdd); }, "SpaceInformation is null");
+  expectError([&] { MddStateValidityChecker(fx.si, nullptr, fx.mdd); }, "PlanningSpace is null");
+  expectError([&] { MddStateValidityChecker(fx.si, fx.space, nullptr); }, "scene is null");
+  expectError([&] { MddStateValidityChecker(other, fx.space, fx.mdd); }, "state space");
+  expectError([&] { MddMotionValidator(other, fx.space, fx.mdd); }, "state space");
+  expectError([&] { MddMotionValidator(fx.si, fx.space, nullptr); }, "scene is null");
+  expectError([&] { FclStateValidityChecker(other, fx.space, fx.fcl); }, "state space");
+  expectError([&] { FclStateValidityChecker(fx.fcl_si, fx.space, nullptr); }, "FclScene is null");
+  expectError([&] { FclContinuousMotionValidator(other, fx.space, fx.fcl); }, "state space");
+  FclCcdOptions options;
+  options.num_max_iterations = 1;
+  expectError([&] { FclContinuousMotionValidator(fx.fcl_si, fx.space, fx.fcl, options); }, "num_max_iterations");
+  options.num_max_iterations = 10;
+  options.toc_err = 0.0;
+  expectError([&] { FclContinuousMotionValidator(fx.fcl_si, fx.space, fx.fcl, options); }, "toc_err");
+}
+
+TEST(Errors, Queries) {
+  const examples::ExampleScene scene = examples::thinWallScene(0.05);
+  const MddScene mdd(scene.robot, scene.world);
+  const Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::Zero()); }, "direction is zero");
+  expectError([&] { directedClearance(mdd, X, Eigen::Vector3d(kNaN, 0, 0)); }, "not finite");
+  expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX(), -1.0); }, "max_distance");
+  expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX(), kNaN); }, "max_distance");
+  expectError([&] { mdd.sweepSet(0, X, Eigen::Vector3d::Zero(), 1.0, true); }, "direction is zero");
+  // A zero translation is a state check, not an error.
+  EXPECT_FALSE(mdd.sweep(X, Eigen::Vector3d::Zero()).start_collides);
+}
+
+TEST(Errors, ExampleScenes) {
+  expectError([] { examples::thinWallScene(0.0); }, "thickness");
+  const std::vector<Eigen::Vector2d> clockwise = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  expectError([&] { examples::prismTriangles(clockwise, 0.0, 1.0, "x"); }, "counter-clockwise");
+}
+
+}  // namespace
+}  // namespace mddual::planning

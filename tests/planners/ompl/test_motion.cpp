@@ -1,0 +1,394 @@
+// MddMotionValidator: soundness against a dense FCL check on random edges of
+// the four scenes (zero misses), exact first contacts on translation edges
+// (against an FCL bisection, to 1e-9 of the edge), lastValid per OMPL's
+// contract, the thin wall OMPL's discrete check passes through, and the FCL
+// continuous validator on the same edges.
+#include <gtest/gtest.h>
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "mddual/generators.h"
+#include "test_support.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+using testing::Fixture;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = 3.14159265358979323846;
+/// Dense check resolution, as a fraction of the edge.
+constexpr double kDenseStep = 1e-4;
+
+struct EdgeTally {
+  int edges = 0;
+  int valid = 0;
+  int misses = 0;  // ours valid, the dense FCL check finds a collision
+  int early = 0;   // an FCL-invalid state before our first-contact fraction (bound)
+  int fraction_checked = 0;
+  int fraction_errors = 0;  // translation edges: |ours - FCL bisection| > 1e-9
+  int grazing = 0;          // our contact is a touch that FCL samples do not see
+  int false_alarms = 0;     // rotating edges: ours invalid, the dense check finds nothing
+  int samples = 0;
+  double worst_fraction_error = 0.0;
+};
+
+/// The first FCL-invalid fraction near `f` (to the right), or +inf.
+double fclInvalidNear(const Fixture& fx, const ob::State* s1, const ob::State* s2, double f) {
+  for (double eps = 1e-11; eps <= 1e-4; eps *= 4.0) {
+    const double t = std::min(1.0, f + eps);
+    if (!testing::fclValidAt(fx, s1, s2, t)) return t;
+    if (t == 1.0) break;
+  }
+  return kInf;
+}
+
+void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, EdgeTally* tally) {
+  ++tally->edges;
+  const MddMotionValidator& mv = *fx.mdd_motion;
+  const bool valid = mv.checkMotion(s1, s2);
+  ob::ScopedState<> last(fx.space->stateSpace());
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_EQ(mv.checkMotion(s1, s2, lv), valid) << fx.scene.name << " edge " << tally->edges;
+  const EdgeMotion motion = fx.space->motion(s1, s2);
+  if (valid) {
+    ++tally->valid;
+    EXPECT_EQ(lv.second, -1.0) << "lastValid touched on a valid edge";
+    const double t = testing::denseFirstInvalid(fx, s1, s2, 0.0, kDenseStep, &tally->samples);
+    if (t != kInf) {
+      ob::ScopedState<> st(fx.space->stateSpace());
+      fx.space->stateSpace()->interpolate(s1, s2, t, st.get());
+      const Eigen::Isometry3d X = fx.space->pose(st.get());
+      const double d = testing::distanceToTouching(*fx.mdd, X, 1e-6);
+      if (d > testing::touchTolerance(*fx.mdd, X)) {
+        ++tally->misses;
+        ADD_FAILURE() << fx.scene.name << ": MISS, edge valid for MDD but FCL collides at t = " << t
+                      << " (distance to touching " << d << ", rotates " << motion.rotates() << ")";
+      }
+    }
+    return;
+  }
+  // Invalid: lastValid is a valid state before the first invalid fraction.
+  const EdgeContact first = mv.firstInvalid(s1, s2);
+  ASSERT_TRUE(first.collides);
+  EXPECT_GE(lv.second, 0.0);
+  EXPECT_LE(lv.second, first.fraction);
+  EXPECT_TRUE(fx.si->isValid(last.get())) << "lastValid is not valid";
+  if (lv.second < first.fraction) {
+    EXPECT_LE(first.fraction - lv.second, 1e-3)
+        << "lastValid backed off far (" << lv.second << " vs " << first.fraction << ")";
+  }
+  if (first.start_collides) return;
+  // No FCL-invalid state before our first invalid fraction (exact or a bound).
+  const double t_fcl = testing::denseFirstInvalid(fx, s1, s2, 0.0, kDenseStep, &tally->samples);
+  if (t_fcl < first.fraction - 1e-9) {
+    ob::ScopedState<> st(fx.space->stateSpace());
+    fx.space->stateSpace()->interpolate(s1, s2, t_fcl, st.get());
+    const Eigen::Isometry3d X = fx.space->pose(st.get());
+    if (testing::distanceToTouching(*fx.mdd, X, 1e-6) > testing::touchTolerance(*fx.mdd, X)) {
+      ++tally->early;
+      ADD_FAILURE() << fx.scene.name << ": FCL collides at t = " << t_fcl << " before our first contact "
+                    << first.fraction << " (rotates " << motion.rotates() << ")";
+    }
+    return;
+  }
+  if (motion.rotates()) {
+    if (t_fcl == kInf) ++tally->false_alarms;
+    return;
+  }
+  // Translation edge: the exact fraction against an FCL bisection.
+  ++tally->fraction_checked;
+  double hi = fclInvalidNear(fx, s1, s2, first.fraction);
+  if (hi == kInf) {
+    // FCL sees no collision just after our contact: a grazing touch. Check it
+    // is one on the brute force.
+    const Eigen::Isometry3d X = motion.pose(first.fraction);
+    const double d = first.contact.robot_piece < 0 ? 0.0 : testing::distanceToTouching(*fx.mdd, X, 1e-6);
+    if (d <= 10 * testing::touchTolerance(*fx.mdd, X)) {
+      ++tally->grazing;
+    } else {
+      ++tally->fraction_errors;
+      ADD_FAILURE() << fx.scene.name << ": no FCL collision after our first contact " << first.fraction
+                    << " (distance to touching there " << d << ")";
+    }
+    return;
+  }
+  const double lo = std::max(0.0, first.fraction - 1e-6);
+  if (!testing::fclValidAt(fx, s1, s2, lo)) {
+    ++tally->fraction_errors;
+    ADD_FAILURE() << fx.scene.name << ": FCL invalid at " << lo << " before our first contact " << first.fraction;
+    return;
+  }
+  const double f_fcl = testing::fclBisect(fx, s1, s2, lo, hi, 1e-13);
+  const double err = std::abs(f_fcl - first.fraction);
+  tally->worst_fraction_error = std::max(tally->worst_fraction_error, err);
+  if (err > 1e-9) {
+    ++tally->fraction_errors;
+    ADD_FAILURE() << fx.scene.name << ": first contact " << first.fraction << ", FCL bisection " << f_fcl;
+  }
+}
+
+class MotionSoundness : public ::testing::TestWithParam<int> {};
+
+TEST_P(MotionSoundness, NoMissesAndExactTranslationContacts) {
+  const examples::ExampleScene scene = testing::standardScenes(testing::seed())[static_cast<std::size_t>(GetParam())];
+  const Fixture fx = testing::makeFixture(scene);
+  testing::Rng rng(testing::seed() * 7919 + static_cast<std::uint64_t>(GetParam()));
+  const double extent = (scene.bounds.max() - scene.bounds.min()).head<2>().norm();
+  const bool can_rotate = fx.space->kind() == SpaceKind::kSE2 || fx.space->kind() == SpaceKind::kSE3;
+  const int n = 500 * testing::scale();  // 2 edges each: 10,000 per scene at scale 10
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+  EdgeTally translation, rotation;
+  for (int i = 0; i < n; ++i) {
+    for (bool second : {false, true}) {
+      const bool rotate = second && can_rotate;  // translation-only spaces: two translation edges
+      testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+      // Short and long edges, and pure rotations.
+      const double max_length = rotate && i % 5 == 1 ? 0.0 : (i % 3 == 0 ? 0.05 : 0.3) * extent;
+      testing::randomEdgeEnd(*fx.space, s1.get(), max_length, rotate, kPi, rng, s2.get());
+      checkEdge(fx, s1.get(), s2.get(), rotate ? &rotation : &translation);
+    }
+  }
+  for (const EdgeTally* t : {&translation, &rotation}) {
+    if (t->edges == 0) continue;
+    std::printf(
+        "%-10s %s %s edges: %d, valid %d, misses %d, early %d, fractions checked %d (errors %d, grazing %d, "
+        "worst %.2e), rotating false alarms %d, FCL samples %d\n",
+        scene.name.c_str(), toString(fx.space->kind()), t == &translation ? "translation" : "rotating", t->edges,
+        t->valid, t->misses, t->early, t->fraction_checked, t->fraction_errors, t->grazing, t->worst_fraction_error,
+        t->false_alarms, t->samples);
+    EXPECT_EQ(t->misses, 0);
+    EXPECT_EQ(t->early, 0);
+    EXPECT_EQ(t->fraction_errors, 0);
+    // A mix of valid and invalid edges.
+    EXPECT_GT(t->valid, t->edges / 20);
+    EXPECT_LT(t->valid, t->edges - t->edges / 20);
+  }
+  if (translation.edges > 0) {
+    EXPECT_GT(translation.fraction_checked, translation.edges / 10);
+  }
+}
+
+std::string sceneName(const ::testing::TestParamInfo<int>& p) {
+  static const char* kNames[] = {"primitives", "mesh", "planar", "blobs"};
+  return kNames[p.param];
+}
+INSTANTIATE_TEST_SUITE_P(Scenes, MotionSoundness, ::testing::Values(0, 1, 2, 3), sceneName);
+
+// The dense check skips ahead by half FCL's distance over the largest point
+// speed: sound when half FCL's distance never exceeds the true distance.
+TEST_P(MotionSoundness, DenseCheckPremiseHalfFclDistanceIsALowerBound) {
+  const examples::ExampleScene scene = testing::standardScenes(testing::seed())[static_cast<std::size_t>(GetParam())];
+  const Fixture fx = testing::makeFixture(scene);
+  testing::Rng rng(testing::seed() * 13 + static_cast<std::uint64_t>(GetParam()));
+  ob::ScopedState<> s(fx.space->stateSpace());
+  double worst_ratio = 0.0;
+  for (int i = 0; i < 200 * testing::scale(); ++i) {
+    testing::randomValidState(*fx.si, *fx.space, rng, s.get());
+    const Eigen::Isometry3d X = fx.space->pose(s.get());
+    const double d_fcl = fx.fcl->distance(X);
+    if (!std::isfinite(d_fcl)) continue;
+    const double d_true = testing::distanceToTouching(*fx.mdd, X, d_fcl + 1e-6);
+    EXPECT_LE(0.5 * d_fcl, d_true + 1e-9) << scene.name << " state " << i;
+    if (d_true > 0.0) worst_ratio = std::max(worst_ratio, d_fcl / d_true);
+  }
+  std::printf("%-10s FCL distance / true distance: at most %.6f\n", scene.name.c_str(), worst_ratio);
+}
+
+// ---- The thin wall ------------------------------------------------------------------
+
+TEST(ThinWall, DiscreteValidatorPassesThroughItOursDoesNot) {
+  const examples::ExampleScene scene = examples::thinWallScene(0.05);
+  const Fixture fx = testing::makeFixture(scene);
+  const double resolution =
+      fx.fcl_si->getStateValidityCheckingResolution() * fx.space->stateSpace()->getMaximumExtent();
+  ASSERT_GT(resolution, 0.05 + 0.2);  // thinner than the resolution, robot included
+  auto naive_options = FclCcdOptions();
+  naive_options.solver = FclCcdSolver::kNaive;
+  const FclContinuousMotionValidator naive(fx.fcl_si, fx.space, fx.fcl, naive_options);
+  const FclContinuousMotionValidator ca(fx.fcl_si, fx.space, fx.fcl);
+  testing::Rng rng(testing::seed());
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+  const int n = 200 * testing::scale();
+  int discrete_passes = 0, naive_passes = 0, ca_passes = 0;
+  for (int i = 0; i < n; ++i) {
+    const double y = std::uniform_real_distribution<double>(-4.5, 4.5)(rng);
+    const double x1 = std::uniform_real_distribution<double>(5.0, 45.0)(rng);
+    const double x2 = std::uniform_real_distribution<double>(55.0, 95.0)(rng);
+    s1[0] = x1;
+    s1[1] = y;
+    s2[0] = x2;
+    s2[1] = y + std::uniform_real_distribution<double>(-0.5, 0.5)(rng);
+    ASSERT_TRUE(fx.si->isValid(s1.get()));
+    ASSERT_TRUE(fx.si->isValid(s2.get()));
+    EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get()));
+    // The exact first contact: the cube (half side 0.1) reaches x = 50.
+    const EdgeContact first = fx.mdd_motion->firstInvalid(s1.get(), s2.get());
+    EXPECT_NEAR(first.fraction, (49.9 - x1) / (x2 - x1), 1e-12);
+    EXPECT_EQ(first.contact.world_piece, 0);
+    EXPECT_NEAR(first.contact.n_W.x(), -1.0, 1e-12);  // from the wall toward the robot
+    EXPECT_NEAR(first.contact.p_WC.x(), 50.0, 1e-9);
+    discrete_passes += fx.fcl_si->checkMotion(s1.get(), s2.get());
+    naive_passes += naive.checkMotion(s1.get(), s2.get());
+    ca_passes += ca.checkMotion(s1.get(), s2.get());
+  }
+  std::printf(
+      "thin wall (0.05, resolution %.3f): %d edges across it; passed by OMPL's discrete validator + FCL: %d, "
+      "FCL naive CCD: %d, FCL conservative advancement: %d, MDD: 0\n",
+      resolution, n, discrete_passes, naive_passes, ca_passes);
+  EXPECT_GT(discrete_passes, n / 2);  // OMPL's discrete check misses most of them
+  EXPECT_GT(naive_passes, n / 2);     // the naive solver is a 10-sample discrete check
+}
+
+// ---- lastValid ------------------------------------------------------------------------
+
+class LastValid : public ::testing::Test {
+ protected:
+  LastValid() : fx(testing::makeFixture(examples::thinWallScene(0.05))) {}
+  Fixture fx;
+};
+
+TEST_F(LastValid, JustBeforeTheContact) {
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+  s1[0] = 40.0;
+  s1[1] = 1.0;
+  s2[0] = 60.0;
+  s2[1] = -1.0;
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv));
+  const double contact = (49.9 - 40.0) / 20.0;
+  EXPECT_LT(lv.second, contact);
+  EXPECT_GT(lv.second, contact - 1e-8);
+  EXPECT_TRUE(fx.si->isValid(last.get()));
+  EXPECT_TRUE(fx.fcl_si->isValid(last.get()));
+  ob::ScopedState<> expected(fx.space->stateSpace());
+  fx.space->stateSpace()->interpolate(s1.get(), s2.get(), lv.second, expected.get());
+  EXPECT_EQ(last, expected);
+  // The motion up to lastValid is valid.
+  EXPECT_TRUE(fx.mdd_motion->checkMotion(s1.get(), last.get()));
+  // Without storage: the fraction alone.
+  std::pair<ob::State*, double> fraction_only(nullptr, -1.0);
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), fraction_only));
+  EXPECT_EQ(fraction_only.second, lv.second);
+}
+
+TEST_F(LastValid, EdgeStartingInCollisionIsInvalidAtZero) {
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+  s1[0] = 50.0;  // inside the wall
+  s1[1] = 0.0;
+  s2[0] = 30.0;
+  s2[1] = 0.0;
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get()));
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv));
+  EXPECT_EQ(lv.second, 0.0);
+  EXPECT_EQ(last, s1);
+  EXPECT_TRUE(fx.mdd_motion->firstInvalid(s1.get(), s2.get()).start_collides);
+}
+
+TEST_F(LastValid, ValidEdgeLeavesItUntouched) {
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+  s1[0] = 10.0;
+  s1[1] = 0.0;
+  s2[0] = 40.0;
+  s2[1] = 3.0;
+  last[0] = 77.0;
+  last[1] = 2.0;
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_TRUE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv));
+  EXPECT_EQ(lv.second, -1.0);
+  EXPECT_EQ(last[0], 77.0);
+}
+
+TEST_F(LastValid, LeavingTheBounds) {
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+  s1[0] = 10.0;
+  s1[1] = 0.0;
+  s2[0] = 10.0;
+  s2[1] = 15.0;  // bounds: |y| <= 5
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get()));
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv));
+  EXPECT_NEAR(lv.second, 5.0 / 15.0, 1e-8);
+  EXPECT_LE(lv.second, 5.0 / 15.0 + 1e-15);
+  EXPECT_TRUE(fx.si->isValid(last.get()));
+}
+
+TEST_F(LastValid, CountersCountEveryCheck) {
+  fx.mdd_motion->resetCounts();
+  fx.mdd_motion->resetMotionCounter();
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+  s1[0] = 10.0;
+  s1[1] = 0.0;
+  s2[0] = 30.0;
+  s2[1] = 0.0;
+  EXPECT_TRUE(fx.mdd_motion->checkMotion(s1.get(), s2.get()));
+  s2[0] = 70.0;
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get()));
+  const CheckerCounts c = fx.mdd_motion->counts();
+  EXPECT_EQ(c.motion_checks, 2u);
+  EXPECT_GE(c.pair_queries, 1u);
+  EXPECT_GT(c.seconds, 0.0);
+  EXPECT_EQ(fx.mdd_motion->getValidMotionCount(), 1u);
+  EXPECT_EQ(fx.mdd_motion->getInvalidMotionCount(), 1u);
+  fx.mdd_motion->resetCounts();
+  EXPECT_EQ(fx.mdd_motion->counts().motion_checks, 0u);
+}
+
+// ---- Edges of the MddScene directly ----------------------------------------------------
+
+TEST(MddSceneEdges, SubThresholdRotationChecksTheEndState) {
+  // OMPL keeps the start orientation along an SE(3) edge rotating by less than
+  // its threshold, but s2 itself is rotated: that state is checked as well.
+  const examples::ExampleScene scene = examples::thinWallScene(0.05);
+  const MddScene mdd(scene.robot, scene.world);
+  EdgeMotion m;
+  m.p_start = Eigen::Vector3d(49.87, 0, 0);  // the cube reaches x = 49.97 < 50
+  m.p_end = m.p_start;
+  m.X_end = Eigen::Isometry3d::Identity();
+  m.X_end.translation() = m.p_end;
+  EXPECT_FALSE(mdd.checkEdge(m).collides);
+  // Rotated by 45 degrees at the same place, its corner reaches 50.01.
+  m.X_end.linear() = Eigen::AngleAxisd(kPi / 4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const EdgeContact e = mdd.checkEdge(m);
+  EXPECT_TRUE(e.collides);
+  EXPECT_EQ(e.fraction, 1.0);
+}
+
+TEST(MddSceneEdges, PureRotationNearAWallIsChecked) {
+  // A 2 x 0.2 bar spinning in place next to a wall it reaches only mid-turn.
+  std::vector<scene::Piece> robot{examples::convexPiece(generators::box({1.0, 0.1, 0.1}), "bar")};
+  std::vector<scene::Piece> world{examples::convexPiece(generators::box({0.1, 0.1, 0.1}), "post")};  // at the origin
+  auto body = std::make_shared<scene::RigidBody>(std::move(robot), "bar");
+  auto w = std::make_shared<scene::World>(std::move(world), "post");
+  const MddScene mdd(body, w);
+  EdgeMotion m;
+  m.p_start = m.p_end = Eigen::Vector3d(0.0, 0.5, 0.0);  // the bar at y = 0.5, parallel to x
+  m.axis_R = Eigen::Vector3d::UnitZ();
+  m.angle = kPi / 2;  // turns to parallel to y: crosses the post
+  m.X_end = m.pose(1.0);
+  EXPECT_FALSE(mdd.collides(m.pose(0.0)));
+  EXPECT_TRUE(mdd.collides(m.pose(1.0)));
+  const EdgeContact e = mdd.checkEdge(m);
+  EXPECT_TRUE(e.collides);
+  EXPECT_FALSE(e.exact);
+  // The first contact: the bar's near face (y = 0.4 at angle 0) reaches the
+  // post (y = 0.1) when the bar's corner sweeps down; the lower bound is before it.
+  double first = 1.0;
+  for (int k = 0; k <= 100000; ++k) {
+    if (mdd.collides(m.pose(k * 1e-5))) {
+      first = k * 1e-5;
+      break;
+    }
+  }
+  EXPECT_LE(e.fraction, first);
+  EXPECT_GT(e.fraction, first - 0.05);
+  EXPECT_GT(e.sub_edges, 0);
+}
+
+}  // namespace
+}  // namespace mddual::planning

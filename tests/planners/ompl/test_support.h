@@ -1,0 +1,90 @@
+// Shared by the tests of the OMPL layer: the scenes, OMPL set-ups with the MDD
+// and FCL checkers over the same pieces, seeded random states and edges, and
+// the independent measures the comparisons rest on (brute-force distance to
+// touching, a dense FCL check of an edge, an FCL bisection of a first contact).
+//
+// Scaling: MDDUAL_PLANNING_SCALE=k multiplies every sample count by k (the CI
+// runs k = 1), MDDUAL_PLANNING_SEED=n changes the seed of scenes and samples.
+#pragma once
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/SpaceInformation.h>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "mddual/planning/example_scenes.h"
+#include "mddual/planning/fcl_checkers.h"
+#include "mddual/planning/mdd_checkers.h"
+
+namespace mddual::planning::testing {
+
+using Rng = std::mt19937_64;
+
+/// MDDUAL_PLANNING_SCALE (default 1).
+int scale();
+/// MDDUAL_PLANNING_SEED (default 1).
+std::uint64_t seed();
+
+/// A scene with both checkers on one space: `si` carries the MDD checker and
+/// motion validator, `fcl_si` the FCL checker and OMPL's DiscreteMotionValidator.
+struct Fixture {
+  examples::ExampleScene scene;
+  PlanningSpacePtr space;
+  std::shared_ptr<MddScene> mdd;
+  std::shared_ptr<FclScene> fcl;
+  ompl::base::SpaceInformationPtr si;
+  ompl::base::SpaceInformationPtr fcl_si;
+  MddStateValidityCheckerPtr mdd_checker;
+  MddMotionValidatorPtr mdd_motion;
+  FclStateValidityCheckerPtr fcl_checker;
+};
+Fixture makeFixture(const examples::ExampleScene& scene, SpaceKind kind,
+                    const MddSceneOptions& options = MddSceneOptions());
+inline Fixture makeFixture(const examples::ExampleScene& scene) {
+  return makeFixture(scene, scene.kind);
+}
+
+/// The four scenes of the issue: primitives (R^3), mesh (SE(3)), planar
+/// (SE(2)), blobs (SE(3)).
+std::vector<examples::ExampleScene> standardScenes(std::uint64_t seed);
+
+/// A uniformly random state of the space (position in bounds; yaw in (-pi,
+/// pi]; uniform rotation).
+void randomState(const PlanningSpace& space, Rng& rng, ompl::base::State* state);
+/// A random state valid for `si` (rejection sampling).
+void randomValidState(const ompl::base::SpaceInformation& si, const PlanningSpace& space, Rng& rng,
+                      ompl::base::State* state);
+/// s2 from s1: translation by a random vector of length up to max_length (in
+/// the space's position dimensions); when `rotate`, a random orientation
+/// (SE(2): yaw; SE(3): rotation by up to max_angle about a random axis),
+/// otherwise s1's orientation.
+void randomEdgeEnd(const PlanningSpace& space, const ompl::base::State* s1, double max_length, bool rotate,
+                   double max_angle, Rng& rng, ompl::base::State* s2);
+
+/// Smallest |signed Euclidean distance| between the robot at X_WR and a world
+/// piece, over the pairs whose boxes come within `margin`, computed on the
+/// brute-force Minkowski difference (independent of MDD-DUAL and of FCL).
+double distanceToTouching(const MddScene& scene, const Eigen::Isometry3d& X_WR, double margin);
+/// The tolerance for "within 1e-9 of touching" at X_WR: 1e-9 of the pair's
+/// length scale (robot radius + |position| + 1).
+double touchTolerance(const MddScene& scene, const Eigen::Isometry3d& X_WR);
+
+/// Dense FCL check of the edge s1 -> s2 under OMPL's interpolation, on the FCL
+/// checker of `fx.fcl_si` (bounds included): samples every `step` of the edge
+/// from `from`, skipping ahead by half the FCL distance to the world
+/// (FclScene::distance: the smaller of FCL's two GJK solvers' answers; a test
+/// checks that half of it never exceeds the true distance) over the largest
+/// point speed (|p2 - p1| + angle * robot radius, per unit of the edge).
+/// Returns the first sample found invalid, or +inf.
+double denseFirstInvalid(const Fixture& fx, const ompl::base::State* s1, const ompl::base::State* s2, double from,
+                         double step, int* samples = nullptr);
+/// Bisection with the FCL checker on [lo, hi] (lo valid, hi invalid) down to
+/// `width`: the first invalid fraction.
+double fclBisect(const Fixture& fx, const ompl::base::State* s1, const ompl::base::State* s2, double lo, double hi,
+                 double width);
+/// Whether the FCL checker accepts the state at fraction t of the edge.
+bool fclValidAt(const Fixture& fx, const ompl::base::State* s1, const ompl::base::State* s2, double t);
+
+}  // namespace mddual::planning::testing

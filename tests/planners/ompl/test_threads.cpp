@@ -1,0 +1,139 @@
+// Concurrent use: the same checkers called from 8 threads at once give the
+// answers one thread gives, and the counters add up. CI runs this executable
+// under ThreadSanitizer too (labels tsan / planning-tsan), so it stays small.
+#include <gtest/gtest.h>
+
+#include <ompl/base/ScopedState.h>
+#include <atomic>
+#include <cmath>
+#include <thread>
+#include <vector>
+
+#include "mddual/planning/clearance.h"
+#include "test_support.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+using testing::Fixture;
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kThreads = 8;
+
+struct Answers {
+  std::vector<char> mdd_state, fcl_state, motion, fcl_motion;
+  std::vector<double> last_valid, clearance;
+};
+
+struct Workload {
+  std::vector<ob::ScopedState<>> states;
+  std::vector<std::pair<ob::ScopedState<>, ob::ScopedState<>>> edges;
+  std::vector<Eigen::Vector3d> directions;
+};
+
+Workload makeWorkload(const Fixture& fx, int states, int edges, std::uint64_t seed) {
+  testing::Rng rng(seed);
+  Workload w;
+  for (int i = 0; i < states; ++i) {
+    w.states.emplace_back(fx.space->stateSpace());
+    testing::randomState(*fx.space, rng, w.states.back().get());
+    Eigen::Vector3d d(std::normal_distribution<double>()(rng), std::normal_distribution<double>()(rng),
+                      fx.space->kind() == SpaceKind::kSE2 ? 0.0 : std::normal_distribution<double>()(rng));
+    w.directions.push_back(d);
+  }
+  const double extent = (fx.space->bounds().max() - fx.space->bounds().min()).head<2>().norm();
+  for (int i = 0; i < edges; ++i) {
+    ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+    testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+    testing::randomEdgeEnd(*fx.space, s1.get(), 0.2 * extent, i % 2 == 1, kPi, rng, s2.get());
+    w.edges.emplace_back(s1, s2);
+  }
+  return w;
+}
+
+/// Runs the workload; `offset` rotates the order so threads interleave differently.
+Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Workload& w, std::size_t offset) {
+  Answers a;
+  const std::size_t ns = w.states.size(), ne = w.edges.size();
+  a.mdd_state.resize(ns);
+  a.fcl_state.resize(ns);
+  a.clearance.resize(ns);
+  a.motion.resize(ne);
+  a.fcl_motion.resize(ne);
+  a.last_valid.resize(ne);
+  for (std::size_t k = 0; k < ns; ++k) {
+    const std::size_t i = (k + offset) % ns;
+    a.mdd_state[i] = fx.mdd_checker->isValid(w.states[i].get());
+    a.fcl_state[i] = fx.fcl_checker->isValid(w.states[i].get());
+    a.clearance[i] = directedClearance(*fx.mdd, *fx.space, w.states[i].get(), w.directions[i]).distance;
+  }
+  ob::ScopedState<> last(fx.space->stateSpace());
+  for (std::size_t k = 0; k < ne; ++k) {
+    const std::size_t i = (k + offset) % ne;
+    const ob::State* s1 = w.edges[i].first.get();
+    const ob::State* s2 = w.edges[i].second.get();
+    a.motion[i] = fx.mdd_motion->checkMotion(s1, s2);
+    std::pair<ob::State*, double> lv(last.get(), -1.0);
+    fx.mdd_motion->checkMotion(s1, s2, lv);
+    a.last_valid[i] = lv.second;
+    a.fcl_motion[i] = ccd.checkMotion(s1, s2);
+  }
+  return a;
+}
+
+void expectSame(const Answers& a, const Answers& b, int thread) {
+  EXPECT_EQ(a.mdd_state, b.mdd_state) << "thread " << thread;
+  EXPECT_EQ(a.fcl_state, b.fcl_state) << "thread " << thread;
+  EXPECT_EQ(a.motion, b.motion) << "thread " << thread;
+  EXPECT_EQ(a.fcl_motion, b.fcl_motion) << "thread " << thread;
+  for (std::size_t i = 0; i < a.last_valid.size(); ++i) {
+    EXPECT_NEAR(a.last_valid[i], b.last_valid[i], 1e-12) << "thread " << thread << " edge " << i;
+  }
+  for (std::size_t i = 0; i < a.clearance.size(); ++i) {
+    if (std::isinf(a.clearance[i])) {
+      EXPECT_EQ(a.clearance[i], b.clearance[i]) << "thread " << thread << " state " << i;
+    } else {
+      EXPECT_NEAR(a.clearance[i], b.clearance[i], 1e-9) << "thread " << thread << " state " << i;
+    }
+  }
+}
+
+class Threads : public ::testing::TestWithParam<int> {};
+
+TEST_P(Threads, SameAnswersFromEightThreadsAsFromOne) {
+  const examples::ExampleScene scene =
+      GetParam() == 0 ? examples::planarScene(testing::seed(), 30) : examples::meshScene(testing::seed(), 8);
+  const Fixture fx = testing::makeFixture(scene);
+  const FclContinuousMotionValidator ccd(fx.fcl_si, fx.space, fx.fcl);
+  const Workload w = makeWorkload(fx, 200 * testing::scale(), 60 * testing::scale(), testing::seed() + 5);
+  fx.mdd_checker->resetCounts();
+  fx.mdd_motion->resetCounts();
+  fx.mdd_motion->resetMotionCounter();
+  const Answers reference = run(fx, ccd, w, 0);  // one thread
+
+  std::vector<Answers> answers(kThreads);
+  std::vector<std::thread> threads;
+  std::atomic<int> ready{0};
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      ready.fetch_add(1);
+      while (ready.load() < kThreads) std::this_thread::yield();  // start together
+      answers[static_cast<std::size_t>(t)] = run(fx, ccd, w, static_cast<std::size_t>(t) * 37);
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  for (int t = 0; t < kThreads; ++t) expectSame(reference, answers[static_cast<std::size_t>(t)], t);
+
+  const std::uint64_t runs = kThreads + 1;
+  // isValid is also called by the lastValid back-off: at least one per state per run.
+  EXPECT_GE(fx.mdd_checker->counts().state_checks, runs * w.states.size());
+  EXPECT_EQ(fx.mdd_motion->counts().motion_checks, runs * 2 * w.edges.size());
+  EXPECT_EQ(fx.mdd_motion->getCheckedMotionCount(), runs * 2 * w.edges.size());
+  EXPECT_EQ(ccd.counts().motion_checks, runs * w.edges.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Threads, ::testing::Values(0, 1),
+                         [](const auto& p) { return std::string(p.param == 0 ? "planar" : "mesh"); });
+
+}  // namespace
+}  // namespace mddual::planning

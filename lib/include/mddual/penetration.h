@@ -22,10 +22,12 @@
 //
 // Methods (PenetrationMethod):
 //   kExact       every facet of M that can be closest: the facet-vertex and
-//                vertex-facet facets (O(m + n) with warm supports) and the
-//                edge-edge facets from the crossings of the two Gaussian maps,
-//                found by walking each arc of A across the vertex regions of
-//                -B (output-sensitive, never all m x n edge pairs);
+//                vertex-facet facets (O(m + n)) and the edge-edge facets from
+//                the crossings of the two Gaussian maps, found by walking each
+//                arc of A across the vertex regions of -B (output-sensitive,
+//                never all m x n edge pairs); candidates whose O(1) lower
+//                bound cannot beat the best facet found are skipped (branch
+//                and bound, usually most of them);
 //   kShallow     the paper's Shallow-Penetration: approximate with delta / 4,
 //                then breadth-first search over the facets of M whose planes
 //                lie within (1 + delta / 2) times the estimate, starting from
@@ -72,14 +74,16 @@ const char* toString(PenetrationStatus status);
 /// Work done by one penetration query. Counters that a method does not use
 /// stay 0.
 struct PenetrationStats {
-  // kExact (the brute force leaves every counter 0):
-  int fv_facets = 0;         ///< facet-of-A + vertex-of-B planes evaluated (one per facet of A)
-  int vf_facets = 0;         ///< vertex-of-A + facet-of-B planes evaluated (one per facet of B)
-  int ee_facets = 0;         ///< edge-edge planes found (crossings of the two Gaussian maps)
+  // kExact (the brute force leaves every counter 0). The method bounds every
+  // candidate from below and evaluates only those that can beat the best
+  // facet found (penetration_exact.cpp), so these count evaluated planes:
+  int fv_facets = 0;         ///< facet-of-A + vertex-of-B planes evaluated
+  int vf_facets = 0;         ///< vertex-of-A + facet-of-B planes evaluated
+  int ee_facets = 0;         ///< edge-edge planes found (crossings of the two Gaussian maps on walked arcs)
   long long arc_pairs = 0;   ///< (arc of A, arc of -B) pairs tested by the map walk
   int walk_steps = 0;        ///< vertex regions of -B entered by the map walk
   int walk_fallbacks = 0;    ///< arcs re-done by testing every edge of B (round-off; 0 on generic input)
-  int pruned = 0;            ///< facets of A or B and arcs of A skipped by their lower bound
+  int pruned = 0;            ///< candidates (facets of A, facets of B, arcs of A) skipped by their bound
   int support_vertices = 0;  ///< vertices whose support value was evaluated
   // kApprox, kShallow, polyhedral metric:
   int grid_directions = 0;  ///< directions of the grid (or vertices of K)

@@ -67,11 +67,11 @@ constexpr double kWrongRel = 1e-2;
 
 struct Options {
   std::vector<std::string> sets = {"paper", "random", "hard"};
-  int orientations = 20;
+  int orientations = 40;
   std::vector<int> sizes = {10, 30, 100, 300, 1000, 3000, 5000};
-  int pairs_per_size = 8;
+  int pairs_per_size = 10;
   int placements = 10;
-  int hard_queries = 100;
+  int hard_queries = 200;
   int passes = 3;
   int brute_queries = 10;
   std::string label;

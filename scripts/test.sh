@@ -2,7 +2,8 @@
 # Builds mddual and runs the whole test suite (this is what CI runs):
 #   1. Release build of everything, all ctest tests (core, CLI, install);
 #   2. the core tests again under AddressSanitizer + UndefinedBehaviorSanitizer;
-#   3. the clang-format check.
+#   3. the OMPL layer's concurrency test under ThreadSanitizer;
+#   4. the clang-format check.
 # Set MDDUAL_JOBS to change the parallelism (default: all cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,6 +21,12 @@ cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE
 cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/sanitize -L core --output-on-failure -j "$jobs"
+
+echo "== the OMPL layer's concurrency test under ThreadSanitizer"
+cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE=thread \
+  -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
+cmake --build build/tsan -j "$jobs" --target test_planning_threads
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/tsan -L tsan --output-on-failure
 
 echo "== format"
 ./scripts/check-format.sh

@@ -80,8 +80,7 @@ class QhullRun {
 
 }  // namespace
 
-std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const std::string& what,
-                              double premerge) {
+std::vector<HullFacet> hull3d(const std::vector<Eigen::Vector3d>& points, const std::string& what, double premerge) {
   std::vector<coordT> coords;
   coords.reserve(points.size() * 3);
   for (const Eigen::Vector3d& p : points) {

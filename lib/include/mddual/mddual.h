@@ -5,5 +5,6 @@
 #include "mddual/defaults.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
+#include "mddual/penetration.h"
 #include "mddual/polytope.h"
 #include "mddual/query.h"

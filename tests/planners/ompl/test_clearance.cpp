@@ -114,8 +114,7 @@ TEST_P(Clearance, MatchesTheBruteForce) {
 }
 
 std::string sceneName(const ::testing::TestParamInfo<int>& p) {
-  static const char* kNames[] = {"primitives", "mesh", "planar", "blobs"};
-  return kNames[p.param];
+  return testing::sceneName(p.param);
 }
 INSTANTIATE_TEST_SUITE_P(Scenes, Clearance, ::testing::Values(0, 1, 2, 3), sceneName);
 

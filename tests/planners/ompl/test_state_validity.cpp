@@ -64,9 +64,9 @@ Tally compare(const Fixture& fx, int n, std::uint64_t seed) {
 class StateAgreement : public ::testing::TestWithParam<int> {};
 
 TEST_P(StateAgreement, MddAndFclAgreeOnRandomStates) {
-  const examples::ExampleScene scene = testing::standardScenes(testing::seed())[static_cast<std::size_t>(GetParam())];
+  const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(GetParam())];
   const Fixture fx = testing::makeFixture(scene);
-  const int n = 25000 * testing::scale();  // 100,000 over the four scenes
+  const int n = 25000 * testing::scale();  // 100,000 over the four file scenes, as many over the others
   const Tally t = compare(fx, n, testing::seed() * 1000 + static_cast<std::uint64_t>(GetParam()));
   std::printf(
       "%-10s %s: %d states, %d colliding (%.1f%%), %d near touching excepted, %d disagreements; "
@@ -85,10 +85,9 @@ TEST_P(StateAgreement, MddAndFclAgreeOnRandomStates) {
 }
 
 std::string sceneName(const ::testing::TestParamInfo<int>& p) {
-  static const char* kNames[] = {"primitives", "mesh", "planar", "blobs"};
-  return kNames[p.param];
+  return testing::sceneName(p.param);
 }
-INSTANTIATE_TEST_SUITE_P(Scenes, StateAgreement, ::testing::Values(0, 1, 2, 3), sceneName);
+INSTANTIATE_TEST_SUITE_P(Scenes, StateAgreement, ::testing::Range(0, 8), sceneName);
 
 TEST(StateValidity, TouchingCountsAsCollision) {
   // A unit cube robot resting exactly on a slab: invalid; lifted by 1e-6: valid.

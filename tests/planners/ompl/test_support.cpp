@@ -10,8 +10,15 @@
 #include <limits>
 #include <string>
 
+#include <unistd.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 #include "mddual/brute_force.h"
 #include "mddual/generators.h"
+#include "mddual/scene/loaders.h"
+#include "mddual/scene/problem_config.h"
 
 namespace mddual::planning::testing {
 namespace {
@@ -75,6 +82,154 @@ Fixture makeFixture(const examples::ExampleScene& scene, SpaceKind kind, const M
 
 std::vector<examples::ExampleScene> standardScenes(std::uint64_t s) {
   return {examples::primitivesScene(s), examples::meshScene(s), examples::planarScene(s), examples::blobScene(s)};
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratchDir() {
+  const fs::path dir = fs::temp_directory_path() / ("mddual_planning_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+void writeFile(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+std::string urdfOrigin(const Eigen::Vector3d& p, const Eigen::Vector3d& rpy) {
+  std::ostringstream o;
+  o.precision(17);
+  o << "<origin xyz=\"" << p.x() << " " << p.y() << " " << p.z() << "\" rpy=\"" << rpy.x() << " " << rpy.y() << " "
+    << rpy.z() << "\"/>";
+  return o.str();
+}
+
+/// URDF of one link with the given collision elements.
+std::string urdf(const std::string& name, const std::vector<std::string>& collisions) {
+  std::string text = "<?xml version=\"1.0\"?>\n<robot name=\"" + name + "\">\n  <link name=\"base\">\n";
+  for (const std::string& c : collisions) text += "    <collision>" + c + "</collision>\n";
+  return text + "  </link>\n</robot>\n";
+}
+
+/// OBJ text of the triangles of L-shaped prisms (non-convex), one per pose.
+std::string lPrismsObj(const std::vector<Eigen::Isometry3d>& poses, double size) {
+  const std::vector<Eigen::Vector2d> ell{{0, 0}, {2, 0}, {2, 0.7}, {0.7, 0.7}, {0.7, 2}, {0, 2}};
+  std::ostringstream o;
+  o.precision(17);
+  int base = 1;
+  for (const Eigen::Isometry3d& X : poses) {
+    const int k = static_cast<int>(ell.size());
+    for (const double z : {-0.4, 0.4}) {
+      for (const Eigen::Vector2d& q : ell) {
+        const Eigen::Vector3d v = X * (size * Eigen::Vector3d(q.x() - 0.7, q.y() - 0.7, z));
+        o << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+      }
+    }
+    // Caps as fans from the reflex corner (vertex 3 sees every other vertex),
+    // then the side quads.
+    for (int j = 4; j < k + 3; ++j) {
+      const int a = 3;
+      const int b = j % k;
+      const int c = (j + 1) % k;
+      if (b == a || c == a) continue;
+      o << "f " << base + a << " " << base + c << " " << base + b << "\n";
+      o << "f " << base + k + a << " " << base + k + b << " " << base + k + c << "\n";
+    }
+    for (int j = 0; j < k; ++j) {
+      const int a = j;
+      const int b = (j + 1) % k;
+      o << "f " << base + a << " " << base + b << " " << base + k + b << "\n";
+      o << "f " << base + a << " " << base + k + b << " " << base + k + a << "\n";
+    }
+    base += 2 * k;
+  }
+  return o.str();
+}
+
+examples::ExampleScene fromFiles(const std::string& name, scene::RigidBody robot, scene::World world,
+                                 const Eigen::AlignedBox3d& bounds, SpaceKind kind) {
+  examples::ExampleScene s;
+  s.name = name;
+  s.robot = std::make_shared<scene::RigidBody>(std::move(robot));
+  s.world = std::make_shared<scene::World>(std::move(world));
+  s.bounds = bounds;
+  s.kind = kind;
+  return s;
+}
+
+examples::ExampleScene fromConfig(const std::string& name) {
+  const scene::ProblemConfig config =
+      scene::readProblemConfig(fs::path(MDDUAL_CONFIGS_DIR) / name / (name + ".cfg"), {"mdd_rrtconnect"});
+  scene::ProblemScene p = scene::loadProblemScene(config);
+  const SpaceKind kind = p.space == scene::SpaceKind::kSE2 ? SpaceKind::kSE2 : SpaceKind::kSE3;
+  return fromFiles(name, std::move(p.robot), std::move(p.world), p.bounds, kind);
+}
+
+}  // namespace
+
+std::vector<examples::ExampleScene> fileScenes(std::uint64_t s) {
+  Rng rng(s * 7919 + 11);
+  auto u = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  const fs::path dir = scratchDir();
+  // (a) URDF primitives: boxes, cylinders and spheres at random poses.
+  std::vector<std::string> obstacles;
+  for (int i = 0; i < 45; ++i) {
+    const Eigen::Vector3d p(u(0, 10), u(0, 10), u(0, 10));
+    const Eigen::Vector3d rpy(u(-3, 3), u(-1.5, 1.5), u(-3, 3));
+    std::ostringstream g;
+    if (i % 3 == 0) {
+      g << "<geometry><box size=\"" << u(0.3, 1.8) << " " << u(0.3, 1.8) << " " << u(0.3, 1.8) << "\"/></geometry>";
+    } else if (i % 3 == 1) {
+      g << "<geometry><cylinder radius=\"" << u(0.2, 0.7) << "\" length=\"" << u(0.5, 2.0) << "\"/></geometry>";
+    } else {
+      g << "<geometry><sphere radius=\"" << u(0.2, 0.8) << "\"/></geometry>";
+    }
+    obstacles.push_back(urdfOrigin(p, rpy) + g.str());
+  }
+  writeFile(dir / "world.urdf", urdf("primitives_world", obstacles));
+  writeFile(
+      dir / "robot.urdf",
+      urdf("primitives_robot",
+           {urdfOrigin({0, 0, 0}, {0, 0, 0}) + "<geometry><box size=\"0.6 0.4 0.3\"/></geometry>",
+            urdfOrigin({0, 0, 0.35}, {0, 0, 0}) + "<geometry><cylinder radius=\"0.15\" length=\"0.4\"/></geometry>",
+            urdfOrigin({0.35, 0, 0}, {0, 0, 0}) + "<geometry><sphere radius=\"0.15\"/></geometry>"}));
+  const Eigen::AlignedBox3d cube(Eigen::Vector3d::Zero(), Eigen::Vector3d::Constant(10.0));
+  // Curved primitives circumscribed within 1 cm (the default 1 mm gives
+  // spheres of thousands of vertices, too heavy for the brute-force measures).
+  scene::LoadOptions coarse;
+  coarse.primitive_tolerance = 0.01;
+  examples::ExampleScene urdf_scene = fromFiles("urdf", scene::loadBody(dir / "robot.urdf", coarse),
+                                                scene::loadWorld(dir / "world.urdf", coarse), cube, SpaceKind::kSE3);
+  // (b) A non-convex OBJ world and robot: both become triangles.
+  std::vector<Eigen::Isometry3d> poses;
+  for (int i = 0; i < 25; ++i) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = generators::randomRotation(rng);
+    X.translation() = Eigen::Vector3d(u(0, 10), u(0, 10), u(0, 10));
+    poses.push_back(X);
+  }
+  writeFile(dir / "world.obj", lPrismsObj(poses, 1.2));
+  writeFile(dir / "robot.obj", lPrismsObj({Eigen::Isometry3d::Identity()}, 0.35));
+  examples::ExampleScene mesh_scene = fromFiles("meshfile", scene::loadBody(dir / "robot.obj"),
+                                                scene::loadWorld(dir / "world.obj"), cube, SpaceKind::kSE3);
+  return {urdf_scene, mesh_scene, fromConfig("maze_se2"), fromConfig("cubicles")};
+}
+
+const std::vector<examples::ExampleScene>& allScenes() {
+  static const std::vector<examples::ExampleScene> scenes = [] {
+    std::vector<examples::ExampleScene> all = standardScenes(seed());
+    for (examples::ExampleScene& f : fileScenes(seed())) all.push_back(std::move(f));
+    return all;
+  }();
+  return scenes;
+}
+
+std::string sceneName(int index) {
+  static const char* kNames[] = {"primitives", "mesh", "planar", "blobs", "urdf", "meshfile", "maze_se2", "cubicles"};
+  return kNames[index];
 }
 
 void randomState(const PlanningSpace& space, Rng& rng, ob::State* state) {

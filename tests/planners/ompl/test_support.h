@@ -46,9 +46,24 @@ inline Fixture makeFixture(const examples::ExampleScene& scene) {
   return makeFixture(scene, scene.kind);
 }
 
-/// The four scenes of the issue: primitives (R^3), mesh (SE(3)), planar
+/// The four scenes built in code: primitives (R^3), mesh (SE(3)), planar
 /// (SE(2)), blobs (SE(3)).
 std::vector<examples::ExampleScene> standardScenes(std::uint64_t seed);
+
+/// The four scenes of issue 3 loaded from files through the scene loaders:
+/// a URDF world and robot of primitives (boxes, cylinders, spheres; SE(3)), a
+/// non-convex OBJ world and robot (triangles; SE(3)), and the configs
+/// configs/maze_se2 (SE(2)) and configs/cubicles (SE(3)).
+std::vector<examples::ExampleScene> fileScenes(std::uint64_t seed);
+
+/// standardScenes(seed()) then fileScenes(seed()), built once; index k >= 4 is
+/// a file scene.
+const std::vector<examples::ExampleScene>& allScenes();
+inline bool isFileScene(int index) {
+  return index >= 4;
+}
+/// Test name of allScenes()[index].
+std::string sceneName(int index);
 
 /// A uniformly random state of the space (position in bounds; yaw in (-pi,
 /// pi]; uniform rotation).

@@ -425,9 +425,12 @@ bool Searcher::edgeNeighbours(const Candidate& current, Candidate* best) {
     return evalVF(f, current.va, *best, &c) && take(c, Phase::kEE, best);
   };
   auto ee = [&](const EdgeInA& ea, const EdgeInA& eb) {
-    if (!s_.visited.insert(keyOf(FaceOfM::Kind::kEE, ea.id, eb.id))) return false;
+    // The arc test first: it is cheaper than the visited set, and most
+    // pairs do not cross (re-testing them in a later step costs less than
+    // remembering them).
     Candidate c;
-    return evalEE(ea, eb, &c) && take(c, Phase::kEE, best);
+    if (!evalEE(ea, eb, &c) || !s_.visited.insert(keyOf(FaceOfM::Kind::kEE, ea.id, eb.id))) return false;
+    return take(c, Phase::kEE, best);
   };
   const FaceOfM& face = current.face;
   if (face.kind == FaceOfM::Kind::kFV) {
@@ -503,9 +506,9 @@ Candidate Searcher::searchEE(Candidate current) {
     collectEdges(s_.ties_b, true, &s_.edges_b);
     for (const EdgeInA& ea : s_.edges_a) {
       for (const EdgeInA& eb : s_.edges_b) {
-        if (!s_.visited.insert(keyOf(FaceOfM::Kind::kEE, ea.id, eb.id))) continue;
-        Candidate c;
-        if (evalEE(ea, eb, &c) && take(c, Phase::kEE, &best)) return best;
+        Candidate c;  // arc test first, as in edgeNeighbours
+        if (!evalEE(ea, eb, &c) || !s_.visited.insert(keyOf(FaceOfM::Kind::kEE, ea.id, eb.id))) continue;
+        if (take(c, Phase::kEE, &best)) return best;
       }
     }
     if (!(best.phi > current.phi)) return current;

@@ -325,6 +325,14 @@ ToiResult toi(const DirectionalInput& input, WarmStart* warm) {
       r.toi = 0.0;
       return r;
     }
+    // A yes/no check can stop here: the centre is a point of M on the line,
+    // so a centre within [0, max_distance] proves a contact on the way.
+    if (!input.exact_toi && centre.tau >= 0.0 && centre.tau <= max_distance) {
+      r.status = ToiStatus::kHit;
+      r.toi = centre.tau + 0.0;
+      r.toi_exact = false;
+      return r;
+    }
     // A portal refinement from the centre toward the origin (along the line)
     // settles most overlapping starts in a few supports: a tetrahedron of M
     // holding the origin means toi = 0; a separating plane with the centre

@@ -89,12 +89,20 @@ class QueryOracle {
       const MddResult ref = brute.mdd(s);
       const ToiResult fast_toi = toi(in);
       const ToiResult ref_toi = brute.toi(s);
+      // The yes/no form within a finite max_distance: the same decision as the
+      // exact answer, and an early hit's bound is not below the true contact.
+      DirectionalInput yes_no = in;
+      yes_no.exact_toi = false;
+      yes_no.max_distance = std::isfinite(ref_toi.toi) ? 1.5 * ref_toi.toi + tol : scale;
+      const ToiResult decided = toi(yes_no);
+      const bool hit_within = ref_toi.status != ToiStatus::kNever && ref_toi.toi <= yes_no.max_distance;
       tally->add(ref.status);
       if (fast.stats.planar) ++tally->planar;
       std::ostringstream why;
       if (!agree(fast, ref, tol, &why) || !agreeToi(fast_toi, ref_toi, ref, tol, &why) ||
           !contactValid(a, X_WA, b, X_WB, s, fast, tol, &why) ||
-          (fast_toi.status == ToiStatus::kHit && !contactValid(a, X_WA, b, X_WB, s, asMdd(fast_toi), tol, &why))) {
+          (fast_toi.status == ToiStatus::kHit && !contactValid(a, X_WA, b, X_WB, s, asMdd(fast_toi), tol, &why)) ||
+          !decisionAgrees(decided, hit_within, ref_toi, ref, yes_no.max_distance, tol, &why)) {
         ++failures;
         ADD_FAILURE() << why.str() << "\n  fast: " << describe(fast) << "\n  brute: " << describe(ref)
                       << "\n  toi fast " << toString(fast_toi.status) << " " << fast_toi.toi << ", brute "
@@ -176,6 +184,30 @@ class QueryOracle {
     *why << "toi differs: fast " << toString(fast.status) << " " << fast.toi << " vs brute " << toString(ref.status)
          << " " << ref.toi;
     return false;
+  }
+
+  /// The yes/no form of toi(): hit or not within max_distance as the exact
+  /// answer says (the touching side excepted), and an early hit's bound is at
+  /// least the true first contact.
+  static bool decisionAgrees(const ToiResult& decided, bool hit_within, const ToiResult& ref, const MddResult& ref_mdd,
+                             double max_distance, double tol, std::ostringstream* why) {
+    const bool says_hit = decided.status != ToiStatus::kNever;
+    const bool near_boundary = std::abs(ref.toi - max_distance) <= tol || ref_mdd.status == ContactStatus::kTouching ||
+                               (ref_mdd.t_hi - ref_mdd.t_lo <= tol) ||
+                               (!std::isnan(ref_mdd.t_hi) && std::abs(ref_mdd.t_hi) <= tol);
+    if (says_hit != hit_within && !near_boundary) {
+      *why << "yes/no toi disagrees: " << toString(decided.status) << " within " << max_distance;
+      return false;
+    }
+    if (!decided.toi_exact && says_hit && hit_within && decided.toi < ref.toi - tol) {
+      *why << "early hit bound " << decided.toi << " below the first contact " << ref.toi;
+      return false;
+    }
+    if (!decided.toi_exact && !(decided.toi <= max_distance)) {
+      *why << "early hit bound beyond max_distance";
+      return false;
+    }
+    return true;
   }
 
   /// The contact point lies on A and on B translated by t u, and the normal

@@ -145,6 +145,11 @@ struct DirectionalInput {
   /// which lets the search stop early (a motion validator passes the edge
   /// length). mdd() ignores it.
   double max_distance = std::numeric_limits<double>::infinity();
+  /// toi() only: when false, the caller only wants to know whether B touches
+  /// A within max_distance (a yes/no motion check), and toi() may answer kHit
+  /// before computing the first contact (see ToiResult::toi_exact). mdd()
+  /// ignores it.
+  bool exact_toi = true;
 };
 
 /// Result of mdd().
@@ -171,9 +176,16 @@ struct MddResult {
 /// Result of toi(). toi is the first t >= 0 with t u in M: > 0 for kHit, 0
 /// for kInContact, +infinity for kNever. contact is filled for kHit only; the
 /// query does not spend work to tell touching from overlapping.
+///
+/// With input.exact_toi == false a hit may be decided early, from a point of
+/// M on the line within [0, max_distance]: then status is kHit, toi_exact is
+/// false, toi is an upper bound on the first contact (B touches or overlaps A
+/// somewhere in [0, toi], possibly already at 0), and contact is all NaN.
+/// kNever and kInContact are always exact.
 struct ToiResult {
   ToiStatus status = ToiStatus::kNever;
   double toi = std::numeric_limits<double>::infinity();
+  bool toi_exact = true;
   Contact contact;
   SearchStats stats;
 };

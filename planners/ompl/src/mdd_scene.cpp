@@ -278,6 +278,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
       in.X_WB = X_WR;
       in.s_W = u;
       in.max_distance = limit;
+      in.exact_toi = first_contact;  // a yes/no sweep may stop at the first proof of a hit
       ++result.pair_queries;
       const ToiResult r = toi(in, warmIn(*table, set, i, j));
       if (r.status == ToiStatus::kNever || !(r.toi <= limit)) continue;

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Planning-layer speed (issue 3): per scene, time per state check and per
+# motion check, MDD-DUAL against FCL (OMPL's discrete validator at the default
+# resolution, and FCL's continuous collision), with pair queries per check.
+# Builds Release in build-bench/ and writes out/bench-planning.md (about a
+# minute on the 2-core development machine, plus the build).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${MDDUAL_BENCH_BUILD_DIR:-$root/build-bench}"
+out="${MDDUAL_BENCH_OUT:-$root/out}"
+mkdir -p "$out"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMDDUAL_BUILD_BENCHMARKS=ON -DMDDUAL_BUILD_TESTS=OFF \
+  -DMDDUAL_BUILD_CLI=OFF >/dev/null
+cmake --build "$build" -j2 --target mddual_bench_planning
+"$build/benchmarks/planning/mddual_bench_planning" "$@" | tee "$out/bench-planning.md"

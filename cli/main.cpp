@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   mddual::cli::registerDemoCommand(app);
   mddual::cli::registerPdCommand(app);
   mddual::cli::registerWidthCommand(app);
+#ifdef MDDUAL_CLI_WITH_BENCH
+  mddual::cli::registerBenchCommand(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

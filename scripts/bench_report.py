@@ -7,15 +7,33 @@ Runs are grouped by config, planner and checker (experiment parameters
 `config` and `checker`, set by `mddual bench`), so the logs of several
 shards merge here.
 
-    scripts/bench_report.py --db out/bench/bench.db [--plots DIR] [--markdown FILE]
+    scripts/bench_report.py --db out/bench/thin_walls/bench.db [--plots DIR] [--markdown FILE]
 
-Per planner and checker: runs, success rate (exact solutions whose path the
-strict verification found collision-free, over all runs), median solve time
-over all runs (unsolved runs count at the time limit), the time ratio against
-FCL's discrete checker on the same planner, the median number of state and
-motion checks, and the number of invalid solutions (solved, but the strict
-verification found a collision on the path). Python standard library, plus
-matplotlib (Debian's python3-matplotlib) for the plots.
+Per config, planner and checker:
+  runs            runs in the database (all shards);
+  success         runs whose exact solution the strict verification found
+                  collision-free (run property `verified`), over all runs;
+  median time     median planning time over all runs, a run without a verified
+                  solution counting at the time limit (unsolved, approximate
+                  and invalid solutions alike);
+  time / FCL      that median over the same planner's with the `fcl` checker
+                  (FCL states + OMPL's discrete motion validator);
+  solved time     median planning time of the runs that returned an exact
+                  solution, valid or not ("-" if none): the planner's raw speed;
+  checking        median share of the planning time spent in the checkers
+                  (run property `checking time`);
+  state / motion checks   medians over all runs;
+  invalid         exact solutions the verification found in collision (its
+                  exact MDD edge check or its dense FCL check);
+  invalid raw     of the runs that were simplified, those whose path before
+                  simplification was already invalid.
+Runs whose verification failed with an error (`verification error`) count as
+neither verified nor invalid and are listed under the table.
+
+Run properties read (columns of `runs`): time, solved, approximate_solution,
+state_checks, motion_checks, pair_queries, checking_time, verified,
+invalid_solution, invalid_raw_solution, verification_error. Python standard
+library, plus matplotlib (Debian's python3-matplotlib) for the plots.
 """
 
 import argparse
@@ -49,17 +67,37 @@ def load(db_path):
             raise SystemExit("bench_report: %s: experiments have no '%s' parameter (not written by mddual bench?)"
                              % (db_path, needed))
     wanted = ["time", "solved", "approximate_solution", "state_checks", "motion_checks", "pair_queries",
-              "checking_time", "invalid_solution", "verified"]
+              "checking_time", "invalid_solution", "verified", "invalid_raw_solution", "verification_error",
+              "run_index"]
     present = [c for c in wanted if c in run_cols]
     query = ("select e.config, e.checker, e.timelimit, p.name, %s from runs r "
              "join experiments e on r.experimentid = e.id join plannerConfigs p on r.plannerid = p.id"
              % ", ".join("r." + c for c in present))
     rows = []
     for rec in db.execute(query):
-        row = {"config": rec[0], "checker": rec[1], "timelimit": rec[2], "planner": rec[3].replace("geometric_", "")}
+        name = rec[3]
+        if name.startswith("geometric_"):
+            name = name[len("geometric_"):]
+        row = {"config": rec[0], "checker": rec[1], "timelimit": rec[2], "planner": name}
         row.update(dict(zip(present, rec[4:])))
         rows.append(row)
     return rows
+
+
+def exact(r):
+    return bool(r.get("solved")) and not r.get("approximate_solution")
+
+
+def verified(r):
+    """A run whose exact solution passed the verification."""
+    if "verified" in r:
+        return bool(r.get("verified"))
+    return exact(r) and not r.get("invalid_solution")  # databases without the property
+
+
+def counted_time(r):
+    """Planning time of a run with a verified solution, else the time limit."""
+    return r["time"] if verified(r) and r.get("time") is not None else r["timelimit"]
 
 
 def summarise(rows):
@@ -68,19 +106,22 @@ def summarise(rows):
         groups.setdefault((r["config"], r["planner"], r["checker"]), []).append(r)
     stats = {}
     for key, runs in groups.items():
-        limit = runs[0]["timelimit"]
-        exact = [r for r in runs if r.get("solved") and not r.get("approximate_solution")]
-        invalid = [r for r in exact if r.get("invalid_solution")]
-        good = len(exact) - len(invalid)
-        times = [r["time"] if (r.get("solved") and not r.get("approximate_solution")) else limit for r in runs]
+        solved = [r for r in runs if exact(r)]
+        shares = [r["checking_time"] / r["time"] for r in runs
+                  if r.get("checking_time") is not None and r.get("time")]
         stats[key] = {
             "runs": len(runs),
-            "success": good / len(runs),
-            "median_time": median(times),
+            "verified": sum(1 for r in runs if verified(r)),
+            "success": sum(1 for r in runs if verified(r)) / len(runs),
+            "median_time": median([counted_time(r) for r in runs]),
+            "solved_time": median([r.get("time") for r in solved]),
+            "checking_share": median(shares),
             "state_checks": median([r.get("state_checks") for r in runs]),
             "motion_checks": median([r.get("motion_checks") for r in runs]),
-            "invalid": len(invalid),
-            "solved": len(exact),
+            "invalid": sum(1 for r in solved if r.get("invalid_solution")),
+            "invalid_raw": sum(1 for r in solved if r.get("invalid_raw_solution")),
+            "errors": [r.get("verification_error") for r in runs if r.get("verification_error")],
+            "solved": len(solved),
         }
     for (config, planner, checker), s in stats.items():
         fcl = stats.get((config, planner, "fcl"))
@@ -96,22 +137,31 @@ def fmt(x, digits=3):
     return str(x)
 
 
+def order(key):
+    config, planner, checker = key
+    rank = CHECKER_ORDER.index(checker) if checker in CHECKER_ORDER else len(CHECKER_ORDER)
+    return (config, planner, rank, checker)
+
+
 def markdown(stats):
-    lines = ["| config | planner | checker | runs | success | median time (s) | time / FCL | state checks | "
-             "motion checks | invalid solutions |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
-
-    def order(key):
-        config, planner, checker = key
-        rank = CHECKER_ORDER.index(checker) if checker in CHECKER_ORDER else len(CHECKER_ORDER)
-        return (config, planner, rank, checker)
-
+    lines = ["| config | planner | checker | runs | success | median time (s) | time / FCL | solved time (s) | "
+             "checking | state checks | motion checks | invalid | invalid raw |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for key in sorted(stats, key=order):
         s = stats[key]
-        lines.append("| %s | %s | %s | %d | %.0f%% | %s | %s | %s | %s | %d |" % (
+        share = "-" if math.isnan(s["checking_share"]) else "%.0f%%" % (100 * s["checking_share"])
+        lines.append("| %s | %s | %s | %d | %.0f%% | %s | %s | %s | %s | %s | %s | %d | %d |" % (
             key[0], key[1], key[2], s["runs"], 100 * s["success"], fmt(s["median_time"]), fmt(s["ratio"], 2),
-            fmt(s["state_checks"], 4), fmt(s["motion_checks"], 4), s["invalid"]))
-    return "\n".join(lines) + "\n"
+            fmt(s["solved_time"]), share, fmt(s["state_checks"], 4), fmt(s["motion_checks"], 4), s["invalid"],
+            s["invalid_raw"]))
+    notes = []
+    for key in sorted(stats, key=order):
+        for e in stats[key]["errors"]:
+            notes.append("- verification error (%s, %s, %s): %s" % (key[0], key[1], key[2], e))
+    text = "\n".join(lines) + "\n"
+    if notes:
+        text += "\n" + "\n".join(notes) + "\n"
+    return text
 
 
 def plot(rows, stats, out_dir):
@@ -129,30 +179,33 @@ def plot(rows, stats, out_dir):
         width = 0.8 / max(1, len(checkers))
         for ci, checker in enumerate(checkers):
             xs = [i + (ci - (len(checkers) - 1) / 2) * width for i in range(len(planners))]
-            times = [[r["time"] if r.get("solved") else r["timelimit"] for r in rows
-                      if r["config"] == config and r["planner"] == p and r["checker"] == checker] for p in planners]
+            times = [[r["time"] for r in rows if r["config"] == config and r["planner"] == p and
+                      r["checker"] == checker and r.get("time") is not None] or [float("nan")] for p in planners]
             box = axes[0][0].boxplot(times, positions=xs, widths=width * 0.9, patch_artist=True, showfliers=False)
             for patch in box["boxes"]:
                 patch.set_facecolor("C%d" % ci)
             get = lambda field: [stats.get((config, p, checker), {}).get(field, 0) or 0 for p in planners]
             axes[0][1].bar(xs, [100 * v for v in get("success")], width, color="C%d" % ci, label=checker)
-            axes[1][0].bar(xs, get("state_checks"), width, color="C%d" % ci)
+            axes[1][0].bar(xs, get("motion_checks"), width, color="C%d" % ci)
             axes[1][1].bar(xs, get("invalid"), width, color="C%d" % ci)
-        titles = ["solve time (s; unsolved at the limit)", "success rate (%, verified)", "state checks (median)",
+        titles = ["planning time of every run (s; valid, invalid or none)",
+                  "success rate (%, verified solutions)", "motion checks (median)",
                   "invalid solutions (count)"]
         for ax, title in zip(axes.flat, titles):
-            ax.set_title(title)
+            ax.set_title(title, fontsize=10)
             ax.set_xticks(range(len(planners)))
             ax.set_xticklabels(planners, rotation=20)
         most_invalid = max([stats[k]["invalid"] for k in stats if k[0] == config] + [0])
         axes[1][1].set_ylim(0, max(1, most_invalid) * 1.15)
         axes[0][0].set_yscale("log")
         axes[1][0].set_yscale("symlog")
+        axes[0][1].set_ylim(0, 105)
         axes[0][1].legend(title="checker")
-        fig.suptitle("%s: checkers compared per planner" % config)
+        runs = max([stats[k]["runs"] for k in stats if k[0] == config] + [0])
+        fig.suptitle("%s: checkers compared per planner (%d runs each)" % (config, runs))
         fig.tight_layout()
         path = os.path.join(out_dir, "%s.png" % config)
-        fig.savefig(path, dpi=90)
+        fig.savefig(path, dpi=80)
         plt.close(fig)
         written.append(path)
     return written

@@ -1,0 +1,504 @@
+// `mddual bench` and `mddual bench-report`: OMPL's planners on a benchmark
+// config with MDD-DUAL's checker and FCL's, one OMPL benchmark log per checker,
+// every solution verified (mddual::planning::runBench), then the database
+// (OMPL's ompl_benchmark_statistics), plots and the summary table
+// (scripts/bench_report.py). Registered only when the planning layer is built
+// (MDDUAL_CLI_WITH_BENCH).
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "commands.h"
+#include "mddual/error.h"
+#include "mddual/planning/bench_runner.h"
+
+extern char** environ;
+
+namespace mddual::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace mp = mddual::planning;
+using Clock = std::chrono::steady_clock;
+
+struct BenchFlags {
+  std::string config;
+  std::string checkers = "mdd,fcl,fcl-continuous";
+  std::string planners;
+  std::string runs;
+  std::string time_limit;
+  std::string output;
+  std::string shard;
+  std::string seed = "1";
+  std::string report;
+};
+
+// ---- Small parsers (one clear line per error) --------------------------------------
+
+long parsePositiveInt(const std::string& flag, const std::string& text) {
+  std::size_t used = 0;
+  long v = 0;
+  try {
+    v = std::stol(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || v < 1 || v > 1000000000L) {
+    throw FatalError(flag + ": '" + text + "' is not a positive integer");
+  }
+  return v;
+}
+
+double parsePositiveReal(const std::string& flag, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || !(v > 0.0) || !std::isfinite(v)) {
+    throw FatalError(flag + ": '" + text + "' is not a positive number");
+  }
+  return v;
+}
+
+std::vector<std::string> splitList(const std::string& flag, const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty()) throw FatalError(flag + ": empty name in '" + text + "'");
+    out.push_back(item);
+  }
+  if (out.empty() || text.back() == ',') throw FatalError(flag + ": empty name in '" + text + "'");
+  return out;
+}
+
+std::string clock(double seconds) {
+  const long s = static_cast<long>(seconds);
+  char buf[32];
+  if (s >= 3600) {
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  }
+  return buf;
+}
+
+// ---- External programs --------------------------------------------------------------
+
+/// Runs argv[0] (searched on PATH) with argv; stdout and stderr go to `log`
+/// when given (appended), else to ours. Returns the exit status (-1: could
+/// not start or killed).
+int runProgram(const std::vector<std::string>& argv, const std::string& log = "") {
+  std::vector<std::string> args = argv;
+  std::vector<char*> cargv;
+  for (std::string& a : args) cargv.push_back(a.data());
+  cargv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (!log.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  }
+  std::cout.flush();
+  std::cerr.flush();
+  pid_t pid = -1;
+  const int rc = posix_spawnp(&pid, cargv[0], &actions, nullptr, cargv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return -1;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+bool isExecutable(const fs::path& p) {
+  return !p.empty() && access(p.c_str(), X_OK) == 0 && !fs::is_directory(p);
+}
+
+/// `name` on PATH (or as given when it holds a '/'), or empty.
+fs::path findOnPath(const std::string& name) {
+  if (name.find('/') != std::string::npos) return isExecutable(name) ? fs::path(name) : fs::path();
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path ? path : "");
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+    if (isExecutable(candidate)) return candidate;
+  }
+  return {};
+}
+
+/// What the database and report steps need.
+struct ReportTools {
+  std::string python;      ///< a python3 with matplotlib
+  std::string statistics;  ///< OMPL's ompl_benchmark_statistics (a python script)
+  std::string script;      ///< scripts/bench_report.py
+};
+
+std::string findReportScript() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("MDDUAL_BENCH_REPORT")) candidates.emplace_back(env);
+#ifdef MDDUAL_BENCH_REPORT_SOURCE
+  candidates.emplace_back(MDDUAL_BENCH_REPORT_SOURCE);
+#endif
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) candidates.push_back(exe.parent_path().parent_path() / "share" / "mddual" / "bench_report.py");
+#ifdef MDDUAL_BENCH_REPORT_INSTALLED
+  candidates.emplace_back(MDDUAL_BENCH_REPORT_INSTALLED);
+#endif
+  std::string tried;
+  for (const fs::path& c : candidates) {
+    if (fs::is_regular_file(c)) return c.string();
+    tried += (tried.empty() ? "" : ", ") + c.string();
+  }
+  throw FatalError("scripts/bench_report.py not found (tried " + tried + "; set MDDUAL_BENCH_REPORT)");
+}
+
+ReportTools findReportTools() {
+  ReportTools t;
+  std::vector<std::string> candidates;
+  const char* env = std::getenv("MDDUAL_PYTHON");
+  if (env && *env) {
+    candidates.emplace_back(env);  // only that one
+  } else {
+    candidates.emplace_back("python3");
+    candidates.emplace_back("/usr/bin/python3");  // Debian's, when PATH's python3 is another (pyenv, venv)
+  }
+  std::vector<std::string> found;
+  for (const std::string& c : candidates) {
+    const fs::path p = findOnPath(c);
+    if (p.empty() || std::find(found.begin(), found.end(), p.string()) != found.end()) continue;
+    found.push_back(p.string());
+    if (runProgram({p.string(), "-c", "import sqlite3, matplotlib"}, "/dev/null") == 0) {
+      t.python = p.string();
+      break;
+    }
+  }
+  if (t.python.empty()) {
+    if (found.empty()) {
+      throw FatalError(
+          "python3 not found: the database and plots need python3 and matplotlib "
+          "(Debian: python3 python3-matplotlib; scripts/install-deps.sh installs them)");
+    }
+    std::string list;
+    for (const std::string& f : found) list += (list.empty() ? "" : ", ") + f;
+    throw FatalError("no python3 with matplotlib (tried " + list +
+                     "): install python3-matplotlib (scripts/install-deps.sh) or set MDDUAL_PYTHON");
+  }
+  fs::path stats = findOnPath("ompl_benchmark_statistics");
+  if (stats.empty() && fs::is_regular_file("/usr/bin/ompl_benchmark_statistics")) {
+    stats = "/usr/bin/ompl_benchmark_statistics";
+  }
+  if (stats.empty()) {
+    throw FatalError("ompl_benchmark_statistics not found: install Debian's ompl-demos (scripts/install-deps.sh)");
+  }
+  t.statistics = stats.string();
+  t.script = findReportScript();
+  return t;
+}
+
+/// The database from `logs`, then the report: DIR/bench.db, DIR/plots/*.png,
+/// DIR/summary.md; the table goes to standard output.
+void buildReport(const ReportTools& tools, const fs::path& dir, const std::vector<fs::path>& logs) {
+  const fs::path db = dir / "bench.db";
+  const fs::path stats_log = dir / "ompl_benchmark_statistics.out";
+  std::error_code ec;
+  fs::remove(db, ec);
+  fs::remove(stats_log, ec);
+  std::vector<std::string> argv{tools.python, tools.statistics};
+  for (const fs::path& l : logs) argv.push_back(l.string());
+  argv.insert(argv.end(), {"-d", db.string()});
+  if (runProgram(argv, stats_log.string()) != 0 || !fs::is_regular_file(db)) {
+    std::ifstream in(stats_log);
+    std::string line;
+    std::string last;
+    while (std::getline(in, line)) {
+      if (!line.empty()) last = line;
+    }
+    throw FatalError("ompl_benchmark_statistics failed on the logs in " + dir.string() + (last.empty() ? "" : ": ") +
+                     last + " (full output: " + stats_log.string() + ")");
+  }
+  std::cout << "## " << dir.string() << "\n\n" << std::flush;
+  const int rc = runProgram({tools.python, "-B", tools.script, "--db", db.string(), "--plots", (dir / "plots").string(),
+                             "--markdown", (dir / "summary.md").string()});
+  if (rc != 0) throw FatalError("scripts/bench_report.py failed (exit status " + std::to_string(rc) + ")");
+  std::cout << "\ndatabase: " << db.string() << " (opens in Planner Arena)\n" << std::flush;
+}
+
+std::vector<fs::path> logsIn(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw FatalError("bench-report: no folder " + dir.string());
+  std::vector<fs::path> logs;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.is_regular_file() && e.path().extension() == ".log") logs.push_back(e.path());
+  }
+  std::sort(logs.begin(), logs.end());
+  if (logs.empty()) throw FatalError("bench-report: no benchmark logs (*.log) in " + dir.string());
+  return logs;
+}
+
+// ---- Progress -----------------------------------------------------------------------
+
+/// The progress display on standard error: a status line rewritten in place
+/// on a terminal (config, checker, planner, run k of n, elapsed), and one line
+/// per finished (checker, planner) with its results in any case.
+class Progress {
+ public:
+  Progress(std::string config, int checkers) : config_(std::move(config)), checkers_(checkers) {
+    tty_ = isatty(STDERR_FILENO) != 0;
+    if (tty_) ticker_ = std::thread([this] { tick(); });
+  }
+  ~Progress() { stop(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+
+  void checker(mp::CheckerKind kind, int index) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    finishPlannerLocked();
+    checker_ = mp::toString(kind);
+    checker_index_ = index;
+    planner_.clear();
+  }
+  void planner(const std::string& name, int index, int count, int runs) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    finishPlannerLocked();
+    planner_ = name;
+    planner_index_ = index;
+    planners_ = count;
+    runs_ = runs;
+    run_ = -1;
+    solved_ = verified_ = invalid_ = done_ = 0;
+    planner_start_ = Clock::now();
+    renderLocked();
+  }
+  void run(int k) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    run_ = k;
+    renderLocked();
+  }
+  void finished(bool solved, bool verified, bool invalid) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++done_;
+    solved_ += solved ? 1 : 0;
+    verified_ += verified ? 1 : 0;
+    invalid_ += invalid ? 1 : 0;
+  }
+  /// Ends the display (prints the last planner's line).
+  void stop() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (stopped_) return;
+      finishPlannerLocked();
+      if (tty_) std::cerr << "\r\033[K" << std::flush;
+      stopped_ = true;
+    }
+    wake_.notify_all();
+    if (ticker_.joinable()) ticker_.join();
+  }
+
+ private:
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  void finishPlannerLocked() {
+    if (planner_.empty()) return;
+    const double took = std::chrono::duration<double>(Clock::now() - planner_start_).count();
+    if (tty_) std::cerr << "\r\033[K";
+    std::cerr << "bench: " << config_ << " | " << checker_ << " | " << planner_ << ": " << done_ << " runs, " << solved_
+              << " solved, " << verified_ << " verified, " << invalid_ << " invalid (" << clock(took) << "; elapsed "
+              << clock(elapsed()) << ")\n"
+              << std::flush;
+    planner_.clear();
+  }
+
+  void renderLocked() {
+    if (!tty_ || stopped_ || planner_.empty()) return;
+    std::cerr << "\r\033[K" << config_ << " | checker " << checker_ << " (" << checker_index_ + 1 << "/" << checkers_
+              << ") | " << planner_ << " (" << planner_index_ + 1 << "/" << planners_ << ") | run "
+              << std::max(run_ + 1, 1) << " of " << runs_ << " | elapsed " << clock(elapsed()) << std::flush;
+  }
+
+  void tick() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stopped_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(500));
+      renderLocked();
+    }
+  }
+
+  std::string config_;
+  int checkers_;
+  bool tty_ = false;
+  bool stopped_ = false;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point planner_start_ = Clock::now();
+  std::string checker_;
+  int checker_index_ = 0;
+  std::string planner_;
+  int planner_index_ = 0;
+  int planners_ = 0;
+  int runs_ = 0;
+  int run_ = -1;
+  int done_ = 0;
+  int solved_ = 0;
+  int verified_ = 0;
+  int invalid_ = 0;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread ticker_;
+};
+
+// ---- The commands -------------------------------------------------------------------
+
+void runBenchReport(const std::string& dir) {
+  const std::vector<fs::path> logs = logsIn(dir);
+  const ReportTools tools = findReportTools();
+  std::cerr << "bench-report: " << logs.size() << " logs in " << dir << "\n";
+  buildReport(tools, dir, logs);
+}
+
+void runBenchCommand(const BenchFlags& f) {
+  if (!f.report.empty()) {
+    if (!f.config.empty()) throw FatalError("bench: give either a config file or --report DIR, not both");
+    runBenchReport(f.report);
+    return;
+  }
+  if (f.config.empty()) throw FatalError("bench: no config file given (mddual bench CONFIG.cfg, or --report DIR)");
+
+  mp::BenchOptions options;
+  try {
+    options.checkers = mp::parseCheckerList(f.checkers);
+  } catch (const InvalidInputError& e) {
+    throw FatalError(std::string("--checkers: ") + e.what());
+  }
+  try {
+    if (!f.shard.empty()) options.shard = mp::parseShard(f.shard);
+  } catch (const InvalidInputError& e) {
+    throw FatalError(e.what());
+  }
+  if (!f.planners.empty()) options.planners = splitList("--planners", f.planners);
+  if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
+  if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
+  const long seed = parsePositiveInt("--seed", f.seed);
+  if (seed + options.shard.index > 4000000000L) throw FatalError("--seed: too large");
+
+  // OMPL's random seed before anything creates a generator: shard I uses seed + I.
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(seed + options.shard.index));
+
+  mp::Problem problem;
+  try {
+    problem = mp::loadProblem(f.config);
+    mp::selectPlanners(problem, options.planners);  // an unknown name fails now
+  } catch (const std::exception& e) {
+    throw FatalError(e.what());
+  }
+  if (!f.output.empty()) {
+    options.output_dir = f.output;
+  } else if (!problem.config.output.empty()) {
+    options.output_dir = scene::resolvePath(problem.config, problem.config.output);
+  } else {
+    options.output_dir = fs::path("out") / "bench" / problem.name;
+  }
+
+  // Before the long part: the database and report tools (unsharded runs).
+  std::optional<ReportTools> tools;
+  if (!options.shard.sharded()) tools = findReportTools();
+
+  Progress progress(problem.name, static_cast<int>(options.checkers.size()));
+  mp::BenchObserver observer;
+  observer.checker_started = [&](mp::CheckerKind k, int i, int) { progress.checker(k, i); };
+  observer.planner_started = [&](mp::CheckerKind, const std::string& name, int i, int n, int runs) {
+    progress.planner(name, i, n, runs);
+  };
+  observer.run_started = [&](mp::CheckerKind, const std::string&, int k, int, int) { progress.run(k); };
+  observer.run_finished = [&](mp::CheckerKind, const std::string&, int, bool solved, bool verified, bool invalid) {
+    progress.finished(solved, verified, invalid);
+  };
+  std::vector<mp::BenchLog> logs;
+  try {
+    logs = mp::runBench(problem, options, observer);
+  } catch (const std::exception& e) {
+    progress.stop();
+    throw FatalError(e.what());
+  }
+  progress.stop();
+  std::vector<fs::path> files;
+  for (const mp::BenchLog& l : logs) {
+    files.push_back(l.file);
+    std::cerr << "log: " << l.file.string() << "\n";
+  }
+  if (!tools) {
+    std::cerr << "shard " << mp::toString(options.shard) << " done; when every shard is: mddual bench-report "
+              << options.output_dir.string() << "\n";
+    return;
+  }
+  buildReport(*tools, options.output_dir, files);
+}
+
+constexpr const char* kBenchFooter =
+    "For each checker (mdd: MDD-DUAL exact edges; fcl: FCL states + OMPL's discrete motion validator at the\n"
+    "space's resolution; fcl-continuous: FCL conservative advancement), the cfg's problem and planners in\n"
+    "ompl::tools::Benchmark with the cfg's limits (flags override them). Writes one OMPL benchmark log per\n"
+    "checker (experiment <config>-<checker>) to DIR (default out/bench/<config>/), verifies every solution\n"
+    "path (exact MDD edge check with a 1e-6 rotation tolerance + dense FCL check), then builds DIR/bench.db\n"
+    "(ompl_benchmark_statistics), DIR/plots/*.png and DIR/summary.md and prints the summary table.\n"
+    "--shard I/N runs runs r with r mod N = I only, seeds OMPL with seed + I and skips the report:\n"
+    "run `mddual bench-report DIR` when every shard is done. Exit status 2 for bad input.";
+
+}  // namespace
+
+void registerBenchCommand(CLI::App& app) {
+  auto flags = std::make_shared<BenchFlags>();
+  CLI::App* sub =
+      app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");
+  sub->footer(kBenchFooter);
+  sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
+  sub->add_option("--checkers", flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
+      ->option_text("LIST");
+  sub->add_option("--planners", flags->planners, "comma-separated planner names of the cfg (default: all)")
+      ->option_text("LIST");
+  sub->add_option("--runs", flags->runs, "runs per planner (default: the cfg's run_count)")->option_text("N");
+  sub->add_option("--time-limit", flags->time_limit, "seconds per run (default: the cfg's time_limit)")
+      ->option_text("S");
+  sub->add_option("--output", flags->output, "output folder (default: out/bench/<config>/)")->option_text("DIR");
+  sub->add_option("--shard", flags->shard, "run only slice I of N of the runs (0 <= I < N)")->option_text("I/N");
+  sub->add_option("--seed", flags->seed, "OMPL's random seed (shard I: seed + I; default 1)")->option_text("K");
+  sub->add_option("--report", flags->report, "only build the database and report from the logs in DIR")
+      ->option_text("DIR");
+  sub->callback([flags] { runBenchCommand(*flags); });
+
+  auto dir = std::make_shared<std::string>();
+  CLI::App* report = app.add_subcommand(
+      "bench-report", "database, plots and summary table from the benchmark logs in DIR (merges shards)");
+  report->add_option("dir", *dir, "folder with the logs of mddual bench (all shards)")->required()->option_text("DIR");
+  report->callback([dir] { runBenchReport(*dir); });
+}
+
+}  // namespace mddual::cli

@@ -1,0 +1,120 @@
+// The benchmark runner behind `mddual bench`: a cfg's problem with each
+// checker, ompl::tools::Benchmark over the cfg's planners, one OMPL benchmark
+// log per checker (and shard), every solution verified (PathVerifier).
+//
+// Per checker: a ProblemSetup, the cfg's planners (makePlanner, in cfg order,
+// named as in the cfg), ompl::tools::Benchmark with the cfg's time and memory
+// limits and run count (options override them), experiment name
+// "<config>-<checker>", experiment parameters config, checker and shard
+// ("I/N"; "0/1" unsharded). Each planner runs with the space parameters plus
+// its own context (planner-switch event). OMPL's own output is off while it
+// runs; the observer sees the progress.
+//
+// Extra properties of every run (post-run event; the counters are reset in
+// the pre-run event):
+//   run index INTEGER          the run's index r among the cfg's runs (shards
+//                              hold disjoint sets of r)
+//   state checks INTEGER, motion checks INTEGER, pair queries INTEGER,
+//   sub edges INTEGER, checking time REAL
+//                              the checkers' work during the run (ProblemSetup::
+//                              stats(): planning, plus OMPL's two checks of
+//                              the solution path right after it)
+//   verified BOOLEAN           an exact solution that PathVerifier found valid
+//   invalid solution BOOLEAN   an exact solution that it found in collision
+//   invalid by mdd BOOLEAN, invalid by fcl BOOLEAN
+//                              which of its checks did (exact solutions)
+//   invalid raw solution BOOLEAN  the path before simplification was invalid
+//   verification time REAL     seconds spent verifying (both paths)
+//   verification error STRING  what went wrong if the verifier threw (the run
+//                              then counts as neither verified nor invalid)
+// Approximate solutions are not solutions: verified and invalid are 0. The
+// solution is simplified here (not by Benchmark) after the counters are read,
+// when the cfg says simplify = true, with OMPL's property names (simplified
+// solution length REAL, ..., simplification time REAL); the path verified is
+// the one the run returns (simplified when simplification is on).
+//
+// Sharding: run r of every (checker, planner) belongs to shard r mod N; shard
+// I of N runs those r in increasing order. The caller seeds OMPL's RNG
+// (seed + I) before building anything, so a shard is reproducible.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mddual/planning/path_verifier.h"
+#include "mddual/planning/problem_setup.h"
+
+namespace mddual::planning {
+
+/// Slice I of N of the runs.
+struct BenchShard {
+  int index = 0;
+  int count = 1;
+  bool sharded() const { return count > 1 || index != 0; }
+};
+
+/// Parses "I/N" (0 <= I < N); throws InvalidInputError naming what is wrong.
+BenchShard parseShard(const std::string& text);
+/// "I/N".
+std::string toString(const BenchShard& shard);
+/// The run indices r in [0, runs) of shard `shard` (r mod N == I), increasing.
+std::vector<int> shardRuns(int runs, const BenchShard& shard);
+
+/// Options of runBench; unset optionals take the cfg's values.
+struct BenchOptions {
+  std::vector<CheckerKind> checkers = allCheckerKinds();
+  /// Planner names as in the cfg ([planner] keys); empty: all of the cfg's.
+  std::vector<std::string> planners;
+  std::optional<int> runs;
+  std::optional<double> time_limit;  ///< seconds
+  std::optional<double> mem_limit;   ///< MB
+  BenchShard shard;
+  /// Where the logs (and saved paths) go; created if missing.
+  std::filesystem::path output_dir;
+  SetupOptions setup;
+  VerifierOptions verifier;
+};
+
+/// Progress callbacks (any may be empty), called from the thread that calls
+/// runBench.
+struct BenchObserver {
+  /// A checker's benchmark starts (index among the checkers run).
+  std::function<void(CheckerKind checker, int index, int count)> checker_started;
+  /// A planner's runs start: `runs` runs of this shard.
+  std::function<void(CheckerKind checker, const std::string& planner, int index, int count, int runs)> planner_started;
+  /// Run k (0-based, of this shard's `runs`) starts; run_index is its r.
+  std::function<void(CheckerKind checker, const std::string& planner, int k, int runs, int run_index)> run_started;
+  /// A run ended: solved exactly, verified, invalid.
+  std::function<void(CheckerKind checker, const std::string& planner, int k, bool solved, bool verified, bool invalid)>
+      run_finished;
+};
+
+/// What runBench wrote.
+struct BenchLog {
+  CheckerKind checker = CheckerKind::kMdd;
+  std::filesystem::path file;  ///< the OMPL benchmark log
+  int planners = 0;
+  int runs_per_planner = 0;
+  int solved = 0;    ///< exact solutions
+  int verified = 0;  ///< of them, verified collision-free
+  int invalid = 0;   ///< of them, found in collision
+};
+
+/// "<config>-<checker>.log", or "<config>-<checker>.shard<I>of<N>.log" for a shard.
+std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard);
+
+/// The cfg's planners that `names` selects (all when empty), in cfg order;
+/// throws InvalidInputError for a name the cfg does not have.
+std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names);
+
+/// Runs the benchmark (see the file comment). Throws InvalidInputError for
+/// bad options (no checker, runs < 1, time limit <= 0, more shards than
+/// runs, a cfg with run_count = 0 and no runs option) or a log that cannot be
+/// written, and what ProblemSetup / makePlanner throw.
+std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options,
+                               const BenchObserver& observer = BenchObserver());
+
+}  // namespace mddual::planning

@@ -1,0 +1,178 @@
+// The planning front end: a benchmark config's problem (mddual::scene's
+// ProblemConfig and ProblemScene) set up in OMPL with one of the collision
+// checkers, ready for planning or for ompl::tools::Benchmark.
+//
+//   auto problem = mp::loadProblem("configs/thin_walls/thin_walls.cfg");
+//   mp::ProblemSetup setup(problem, mp::CheckerKind::kMdd);
+//   auto planner = setup.makePlanner(problem.config.planners[0]);
+//   setup.applyPlannerContext(problem.config.planners[0]);
+//   setup.simpleSetup().setPlanner(planner);
+//   setup.simpleSetup().solve(1.0);
+//
+// What a ProblemSetup holds, in the order it is built:
+//   1. the state space: PlanningSpace of the cfg's kind (SE(2), SE(3), R^2,
+//      R^3) with the scene's position bounds (planar kinds: x and y only);
+//      the translation-only kinds keep the start's orientation (and z = 0 for
+//      R^2);
+//   2. the checkers (CheckerKind):
+//        mdd             MddStateValidityChecker + MddMotionValidator (exact
+//                        translation edges, sound rotating edges);
+//        fcl             FclStateValidityChecker + OMPL's DiscreteMotionValidator
+//                        at the space's resolution (what OMPL.app users run);
+//        fcl-continuous  FclStateValidityChecker + FclContinuousMotionValidator
+//                        with FCL's conservative advancement (libccd) by default
+//                        (SetupOptions::continuous_solver selects the naive one);
+//      each wrapped so that the time spent checking is measured once (a motion
+//      validator's own state checks are nested in its time, not added again)
+//      and the checks are counted (stats());
+//   3. the cfg's space parameters ([problem] keys that are not OMPL.app's own,
+//      e.g. longest_valid_segment_fraction), set on the space information
+//      (every key must be one of its parameters, or "sampler"), then the state
+//      space is set up again so that they take effect;
+//   4. the start and goal states (goal threshold: the cfg's, or OMPL.app's
+//      default kDefaultGoalThreshold = 1e-6) and the optimization objective if
+//      the cfg names one (length, max_min_clearance, mechanical_work; with its
+//      cost threshold).
+// applyPlannerContext(spec) then sets a planner's own problem.KEY overrides
+// on top of the space parameters, as OMPL.app's ompl_benchmark does in its
+// planner-switch event (space parameters, then the planner's context); values
+// another planner's context changed are reset first, so every planner runs
+// with the space parameters plus its own context only.
+//
+// Errors: InvalidInputError (scene::SceneError for the cfg and its files) with
+// a message that names the cfg, and its line where there is one.
+#pragma once
+
+#include <ompl/base/Planner.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/geometric/SimpleSetup.h>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mddual/planning/fcl_checkers.h"
+#include "mddual/planning/mdd_checkers.h"
+#include "mddual/planning/state_space.h"
+#include "mddual/scene/problem_config.h"
+
+namespace mddual::planning {
+
+/// The collision checkers a problem can be set up with (see the file comment).
+enum class CheckerKind : std::uint8_t { kMdd, kFcl, kFclContinuous };
+
+/// "mdd", "fcl", "fcl-continuous".
+const char* toString(CheckerKind kind);
+/// The checker called `name`; throws InvalidInputError naming it and the known names.
+CheckerKind parseCheckerKind(const std::string& name);
+/// A comma-separated list of checker names ("mdd,fcl"), in order; throws
+/// InvalidInputError for an unknown or repeated name or an empty list.
+std::vector<CheckerKind> parseCheckerList(const std::string& list);
+/// mdd, fcl, fcl-continuous.
+const std::vector<CheckerKind>& allCheckerKinds();
+
+/// The planner names a cfg may use: OMPL.app's and ours (mdd_rrtconnect).
+std::set<std::string> ourPlannerNames();
+
+/// A cfg and its scene, loaded once and shared by every set-up of it.
+struct Problem {
+  scene::ProblemConfig config;
+  std::shared_ptr<const scene::ProblemScene> scene;
+  /// The experiment's name: the cfg's name (or its file's stem), with every
+  /// character other than letters, digits, '_', '.' and '-' replaced by '_'.
+  std::string name;
+
+  std::shared_ptr<const scene::RigidBody> robot() const;
+  std::shared_ptr<const scene::World> world() const;
+};
+
+/// Reads a cfg (readProblemConfig, with our planner names) and loads its
+/// scene (loadProblemScene). Throws scene::SceneError naming the file (and
+/// line) for anything wrong.
+Problem loadProblem(const std::filesystem::path& cfg);
+/// A Problem from a config and scene made in code.
+Problem makeProblem(scene::ProblemConfig config, scene::ProblemScene scene);
+
+/// The planning space kind of a cfg's space kind.
+SpaceKind toPlanningKind(scene::SpaceKind kind);
+
+/// Options of a ProblemSetup.
+struct SetupOptions {
+  /// fcl-continuous: FCL's solver (FclCcdOptions; the other settings FCL's defaults).
+  FclCcdSolver continuous_solver = FclCcdSolver::kConservativeAdvancement;
+  /// mdd: the MddScene's options (rotation tolerance, refinement levels).
+  MddSceneOptions mdd;
+};
+
+/// What the checkers of a ProblemSetup did since the last resetStats().
+struct CheckStats {
+  std::uint64_t state_checks = 0;   ///< isValid() calls (also those a motion validator makes)
+  std::uint64_t motion_checks = 0;  ///< checkMotion() calls
+  /// Narrow-phase queries on a (robot piece, world piece) pair: MDD-DUAL's
+  /// intersect/toi, FCL's collide/continuousCollide.
+  std::uint64_t pair_queries = 0;
+  std::uint64_t sub_edges = 0;  ///< mdd: rotating-edge sub-edges swept
+  /// Wall time inside the checkers' methods (outermost calls only; summed
+  /// over threads).
+  double seconds = 0.0;
+};
+
+class CheckTimer;
+
+/// See the file comment. Not copyable; one OMPL problem per instance.
+class ProblemSetup {
+ public:
+  /// Throws InvalidInputError for a space parameter that OMPL's space
+  /// information does not have or rejects, or a bad objective.
+  ProblemSetup(const Problem& problem, CheckerKind checker, const SetupOptions& options = SetupOptions());
+  ~ProblemSetup();
+  ProblemSetup(const ProblemSetup&) = delete;
+  ProblemSetup& operator=(const ProblemSetup&) = delete;
+
+  const Problem& problem() const { return problem_; }
+  CheckerKind checker() const { return checker_; }
+  ompl::geometric::SimpleSetup& simpleSetup() { return *ss_; }
+  const ompl::geometric::SimpleSetup& simpleSetup() const { return *ss_; }
+  const ompl::base::SpaceInformationPtr& spaceInformation() const { return ss_->getSpaceInformation(); }
+  const PlanningSpacePtr& planningSpace() const { return space_; }
+
+  /// The planner of a cfg's [planner] entry: makePlanner(spec.name, si,
+  /// spec.params), named spec.name unless its params set "name". Throws
+  /// InvalidInputError "<cfg>:<line>: ..." for a parameter it rejects.
+  ompl::base::PlannerPtr makePlanner(const scene::PlannerSpec& spec) const;
+
+  /// Sets the space parameters and then spec.context on the space information
+  /// (see the file comment) and sets the state space up again. Throws
+  /// InvalidInputError "<cfg>:<line>: problem.KEY ..." for a key the space
+  /// information does not have or a value it rejects.
+  void applyPlannerContext(const scene::PlannerSpec& spec);
+
+  /// The checkers' counts and time since the last resetStats().
+  CheckStats stats() const;
+  void resetStats();
+
+ private:
+  void applyParameters(const std::vector<std::pair<std::string, std::string>>& params, const std::string& where);
+  void setSampler(const std::string& name, const std::string& where);
+
+  Problem problem_;
+  CheckerKind checker_;
+  PlanningSpacePtr space_;
+  std::shared_ptr<ompl::geometric::SimpleSetup> ss_;
+  std::shared_ptr<CheckTimer> timer_;
+  // The checkers inside the wrappers (null when not of that kind).
+  std::shared_ptr<MddStateValidityChecker> mdd_state_;
+  std::shared_ptr<MddMotionValidator> mdd_motion_;
+  std::shared_ptr<FclStateValidityChecker> fcl_state_;
+  std::shared_ptr<FclContinuousMotionValidator> fcl_motion_;
+  /// Parameter values after the space parameters, for the keys any planner's
+  /// context sets (restored before each context).
+  std::map<std::string, std::string> baseline_;
+  std::string baseline_sampler_;
+};
+
+}  // namespace mddual::planning

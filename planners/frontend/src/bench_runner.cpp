@@ -1,0 +1,309 @@
+#include "mddual/planning/bench_runner.h"
+
+#include <ompl/tools/benchmark/Benchmark.h>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <system_error>
+
+#include "mddual/error.h"
+
+namespace mddual::planning {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+namespace ot = ompl::tools;
+
+namespace {
+
+std::string flag(bool b) {
+  return b ? "1" : "0";
+}
+
+std::string real(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+int parseInt(const std::string& text, const std::string& what) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) {
+    throw InvalidInputError(what);
+  }
+  return std::stoi(text);
+}
+
+std::string cfgName(const Problem& problem) {
+  return problem.config.file.empty() ? problem.name + ".cfg" : problem.config.file.filename().string();
+}
+
+/// Writes a path as OMPL's printAsMatrix does (one state per line).
+void savePath(const og::PathGeometric& path, const std::filesystem::path& file) {
+  std::ofstream out(file);
+  path.printAsMatrix(out);
+  if (!out) throw InvalidInputError("cannot write the path file " + file.string());
+}
+
+}  // namespace
+
+BenchShard parseShard(const std::string& text) {
+  const std::string what = "--shard '" + text + "': expected I/N with 0 <= I < N (e.g. 0/4)";
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) throw InvalidInputError(what);
+  BenchShard s;
+  s.index = parseInt(text.substr(0, slash), what);
+  s.count = parseInt(text.substr(slash + 1), what);
+  if (s.count < 1 || s.index >= s.count) throw InvalidInputError(what);
+  return s;
+}
+
+std::string toString(const BenchShard& shard) {
+  return std::to_string(shard.index) + "/" + std::to_string(shard.count);
+}
+
+std::vector<int> shardRuns(int runs, const BenchShard& shard) {
+  std::vector<int> out;
+  for (int r = shard.index; r < runs; r += shard.count) out.push_back(r);
+  return out;
+}
+
+std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard) {
+  std::string name = config + "-" + toString(checker);
+  if (shard.sharded()) name += ".shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
+  return name + ".log";
+}
+
+std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names) {
+  const auto& all = problem.config.planners;
+  if (all.empty()) throw InvalidInputError(cfgName(problem) + ": the [planner] section names no planner");
+  std::string listed;
+  for (const scene::PlannerSpec& p : all) {
+    if (listed.find(" " + p.name + ",") == std::string::npos) listed += " " + p.name + ",";
+  }
+  listed = listed.substr(1, listed.size() - 2);
+  for (const std::string& n : names) {
+    const bool found = std::any_of(all.begin(), all.end(), [&](const scene::PlannerSpec& p) { return p.name == n; });
+    if (!found) {
+      throw InvalidInputError("planner '" + n + "' is not in " + cfgName(problem) + " (its planners: " + listed + ")");
+    }
+  }
+  std::vector<scene::PlannerSpec> out;
+  for (const scene::PlannerSpec& p : all) {
+    if (names.empty() || std::find(names.begin(), names.end(), p.name) != names.end()) out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options, const BenchObserver& observer) {
+  const scene::ProblemConfig& cfg = problem.config;
+  if (options.checkers.empty()) throw InvalidInputError("no checker to run");
+  const int runs = options.runs.value_or(cfg.run_count);
+  if (options.runs && runs < 1) throw InvalidInputError("--runs must be at least 1 (got " + std::to_string(runs) + ")");
+  if (runs < 1) {
+    throw InvalidInputError(cfgName(problem) + ": run_count = " + std::to_string(runs) +
+                            " (as many runs as fit in the time limit) is not supported: give the number of runs");
+  }
+  const double time_limit = options.time_limit.value_or(cfg.time_limit);
+  if (!(time_limit > 0.0) || !std::isfinite(time_limit)) {
+    throw InvalidInputError("the time limit must be a positive number of seconds (got " + real(time_limit) + ")");
+  }
+  const double mem_limit = options.mem_limit.value_or(cfg.mem_limit);
+  if (!(mem_limit > 0.0)) throw InvalidInputError("the memory limit must be positive (got " + real(mem_limit) + ")");
+  const BenchShard shard = options.shard;
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    throw InvalidInputError("shard " + toString(shard) + ": expected 0 <= I < N");
+  }
+  if (shard.count > runs) {
+    throw InvalidInputError("--shard " + toString(shard) + ": only " + std::to_string(runs) +
+                            " runs per planner, so at most " + std::to_string(runs) + " shards");
+  }
+  const std::vector<scene::PlannerSpec> specs = selectPlanners(problem, options.planners);
+  const std::vector<int> run_indices = shardRuns(runs, shard);
+  const int n = static_cast<int>(run_indices.size());
+
+  std::error_code ec;
+  std::filesystem::create_directories(options.output_dir, ec);
+  if (ec || !std::filesystem::is_directory(options.output_dir)) {
+    throw InvalidInputError("cannot create the output folder " + options.output_dir.string() +
+                            (ec ? ": " + ec.message() : ""));
+  }
+  const std::filesystem::path paths_dir = options.output_dir / "paths";
+  if (cfg.save_paths != scene::SavePaths::kNone) std::filesystem::create_directories(paths_dir);
+
+  const PathVerifier verifier(problem.robot(), problem.world(), problem.scene->bounds, options.verifier);
+  std::vector<BenchLog> logs;
+  for (std::size_t ci = 0; ci < options.checkers.size(); ++ci) {
+    const CheckerKind checker = options.checkers[ci];
+    if (observer.checker_started)
+      observer.checker_started(checker, static_cast<int>(ci), static_cast<int>(options.checkers.size()));
+    ProblemSetup setup(problem, checker, options.setup);
+    const std::string experiment = problem.name + "-" + toString(checker);
+
+    // Planners in cfg order, named as in the cfg (repeats numbered); every
+    // context tried once now, so that a bad value fails here and not inside
+    // OMPL's benchmark (which would only log it).
+    std::vector<ob::PlannerPtr> planners;
+    std::map<const ob::Planner*, std::size_t> spec_of;
+    std::map<std::string, int> seen;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      ob::PlannerPtr p = setup.makePlanner(specs[i]);
+      const int count = ++seen[p->getName()];
+      if (count > 1) p->setName(p->getName() + "_" + std::to_string(count));
+      setup.applyPlannerContext(specs[i]);
+      spec_of[p.get()] = i;
+      planners.push_back(p);
+    }
+
+    ot::Benchmark bench(setup.simpleSetup(), experiment);
+    bench.addExperimentParameter("config", "STRING", problem.name);
+    bench.addExperimentParameter("checker", "STRING", toString(checker));
+    bench.addExperimentParameter("shard", "STRING", toString(shard));
+    for (const ob::PlannerPtr& p : planners) bench.addPlanner(p);
+
+    BenchLog log;
+    log.checker = checker;
+    log.file = options.output_dir / logFileName(problem.name, checker, shard);
+    log.planners = static_cast<int>(planners.size());
+    log.runs_per_planner = n;
+    std::exception_ptr failure;
+    std::size_t current = 0;
+    std::map<std::string, std::pair<double, og::PathGeometric>> shortest;
+
+    bench.setPlannerSwitchEvent([&](const ob::PlannerPtr& planner) {
+      try {
+        current = spec_of.at(planner.get());
+        setup.applyPlannerContext(specs[current]);
+      } catch (...) {
+        if (!failure) failure = std::current_exception();
+      }
+      if (observer.planner_started) {
+        observer.planner_started(checker, planner->getName(), static_cast<int>(current),
+                                 static_cast<int>(planners.size()), n);
+      }
+    });
+    bench.setPreRunEvent([&](const ob::PlannerPtr& planner) {
+      setup.resetStats();
+      const int k = static_cast<int>(bench.getStatus().activeRun);
+      if (observer.run_started && k < n) {
+        observer.run_started(checker, planner->getName(), k, n, run_indices[static_cast<std::size_t>(k)]);
+      }
+    });
+    bench.setPostRunEvent([&](const ob::PlannerPtr& planner, ot::Benchmark::RunProperties& run) {
+      // Never throws: every run is kept, whatever happens here.
+      const CheckStats st = setup.stats();
+      const int k = static_cast<int>(bench.getStatus().activeRun);
+      const int r = k < n ? run_indices[static_cast<std::size_t>(k)] : -1;
+      run["run index INTEGER"] = std::to_string(r);
+      run["state checks INTEGER"] = std::to_string(st.state_checks);
+      run["motion checks INTEGER"] = std::to_string(st.motion_checks);
+      run["pair queries INTEGER"] = std::to_string(st.pair_queries);
+      run["sub edges INTEGER"] = std::to_string(st.sub_edges);
+      run["checking time REAL"] = real(st.seconds);
+      bool exact = false;
+      bool verified = false;
+      bool invalid = false;
+      bool invalid_mdd = false;
+      bool invalid_fcl = false;
+      bool invalid_raw = false;
+      double verify_seconds = 0.0;
+      std::string error;
+      try {
+        og::SimpleSetup& ss = setup.simpleSetup();
+        const bool solved = ss.haveSolutionPath();
+        exact = solved && !ss.getProblemDefinition()->hasApproximateSolution();
+        if (solved) {
+          const og::PathGeometric raw = ss.getSolutionPath();
+          if (cfg.simplify) {
+            const auto t0 = std::chrono::steady_clock::now();
+            ss.simplifySolution();
+            const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            og::PathGeometric& path = ss.getSolutionPath();
+            run["simplification time REAL"] = real(dt);
+            run["simplified solution length REAL"] = real(path.length());
+            run["simplified solution smoothness REAL"] = real(path.smoothness());
+            run["simplified solution clearance REAL"] = real(path.clearance());
+            run["simplified solution segments INTEGER"] = std::to_string(path.getStateCount() - 1);
+            run["simplified correct solution BOOLEAN"] = flag(path.check());
+            const unsigned factor = ss.getStateSpace()->getValidSegmentCountFactor();
+            ss.getStateSpace()->setValidSegmentCountFactor(factor * 4);
+            run["simplified correct solution strict BOOLEAN"] = flag(path.check());
+            ss.getStateSpace()->setValidSegmentCountFactor(factor);
+          }
+          if (exact) {
+            const og::PathGeometric& path = ss.getSolutionPath();
+            const VerifyResult v = verifier.verify(*setup.planningSpace(), path);
+            verify_seconds += v.seconds;
+            verified = v.valid;
+            invalid = !v.valid;
+            invalid_mdd = v.mdd_collision;
+            invalid_fcl = v.fcl_collision;
+            invalid_raw = invalid;
+            if (cfg.simplify) {
+              const VerifyResult vr = verifier.verify(*setup.planningSpace(), raw);
+              verify_seconds += vr.seconds;
+              invalid_raw = !vr.valid;
+            }
+            const std::string stem = experiment + "-" + planner->getName();
+            if (cfg.save_paths == scene::SavePaths::kAll) {
+              std::string name = stem + "-run" + std::to_string(r);
+              if (shard.sharded()) name += ".shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
+              savePath(path, paths_dir / (name + ".path"));
+            } else if (cfg.save_paths == scene::SavePaths::kShortest) {
+              auto it = shortest.find(stem);
+              if (it == shortest.end() || path.length() < it->second.first) {
+                shortest.insert_or_assign(stem, std::make_pair(path.length(), path));
+              }
+            }
+          }
+        }
+      } catch (const std::exception& e) {
+        error = e.what();
+      } catch (...) {
+        error = "unknown exception";
+      }
+      if (!error.empty()) {
+        verified = false;
+        invalid = false;
+        for (char& c : error) {
+          if (c == '\n' || c == ';') c = ' ';
+        }
+        run["verification error STRING"] = error;
+      }
+      run["verified BOOLEAN"] = flag(verified);
+      run["invalid solution BOOLEAN"] = flag(invalid);
+      run["invalid by mdd BOOLEAN"] = flag(exact && invalid_mdd);
+      run["invalid by fcl BOOLEAN"] = flag(exact && invalid_fcl);
+      if (cfg.simplify) run["invalid raw solution BOOLEAN"] = flag(exact && invalid_raw);
+      run["verification time REAL"] = real(verify_seconds);
+      log.solved += exact ? 1 : 0;
+      log.verified += verified ? 1 : 0;
+      log.invalid += invalid ? 1 : 0;
+      if (observer.run_finished) observer.run_finished(checker, planner->getName(), k, exact, verified, invalid);
+    });
+
+    ot::Benchmark::Request request(time_limit, mem_limit, static_cast<unsigned>(n), 0.05,
+                                   /*displayProgress=*/false, /*saveConsoleOutput=*/false, /*simplify=*/false);
+    bench.benchmark(request);
+    if (failure) std::rethrow_exception(failure);
+
+    std::ofstream out(log.file);
+    if (!out || !bench.saveResultsToStream(out) || !(out << std::flush)) {
+      throw InvalidInputError("cannot write the benchmark log " + log.file.string());
+    }
+    for (const auto& [stem, best] : shortest) {
+      std::string name = stem + "-shortest";
+      if (shard.sharded()) name += ".shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
+      savePath(best.second, paths_dir / (name + ".path"));
+    }
+    logs.push_back(log);
+  }
+  return logs;
+}
+
+}  // namespace mddual::planning

@@ -1,0 +1,438 @@
+#include "mddual/planning/problem_setup.h"
+
+#include <ompl/base/DiscreteMotionValidator.h>
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
+#include <ompl/base/objectives/MechanicalWorkOptimizationObjective.h>
+#include <ompl/base/objectives/PathLengthOptimizationObjective.h>
+#include <ompl/base/samplers/GaussianValidStateSampler.h>
+#include <ompl/base/samplers/MaximizeClearanceValidStateSampler.h>
+#include <ompl/base/samplers/ObstacleBasedValidStateSampler.h>
+#include <ompl/base/samplers/UniformValidStateSampler.h>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <mutex>
+#include <sstream>
+
+#include "mddual/error.h"
+#include "mddual/planning/planner_factory.h"
+
+namespace mddual::planning {
+
+namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+// ---- Timing and counting wrappers ------------------------------------------------
+
+/// Counts the checks of one ProblemSetup and times them once: a motion
+/// validator's own state checks (and any other nested check on the same
+/// thread) run inside the outer call's time and are not timed again.
+class CheckTimer {
+ public:
+  /// Times the outermost check on this thread.
+  class Scope {
+   public:
+    explicit Scope(CheckTimer& timer) : timer_(timer), outer_(depth()++ == 0) {
+      if (outer_) start_ = std::chrono::steady_clock::now();
+    }
+    ~Scope() {
+      --depth();
+      if (!outer_) return;
+      const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_);
+      timer_.nanoseconds.fetch_add(static_cast<std::uint64_t>(ns.count()), std::memory_order_relaxed);
+    }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    static int& depth() {
+      thread_local int d = 0;
+      return d;
+    }
+    CheckTimer& timer_;
+    bool outer_;
+    std::chrono::steady_clock::time_point start_;
+  };
+
+  void reset() {
+    state_checks.store(0, std::memory_order_relaxed);
+    motion_checks.store(0, std::memory_order_relaxed);
+    nanoseconds.store(0, std::memory_order_relaxed);
+  }
+
+  std::atomic<std::uint64_t> state_checks{0};
+  std::atomic<std::uint64_t> motion_checks{0};
+  std::atomic<std::uint64_t> nanoseconds{0};
+};
+
+namespace {
+
+/// Forwards every query to the wrapped checker, counting and timing it.
+class TimedStateValidityChecker : public ob::StateValidityChecker {
+ public:
+  TimedStateValidityChecker(ob::SpaceInformation* si, ob::StateValidityCheckerPtr inner,
+                            std::shared_ptr<CheckTimer> timer)
+      : ob::StateValidityChecker(si), inner_(std::move(inner)), timer_(std::move(timer)) {
+    specs_ = inner_->getSpecs();
+  }
+  bool isValid(const ob::State* state) const override {
+    const CheckTimer::Scope scope(*timer_);
+    timer_->state_checks.fetch_add(1, std::memory_order_relaxed);
+    return inner_->isValid(state);
+  }
+  bool isValid(const ob::State* state, double& dist) const override {
+    const CheckTimer::Scope scope(*timer_);
+    timer_->state_checks.fetch_add(1, std::memory_order_relaxed);
+    return inner_->isValid(state, dist);
+  }
+  bool isValid(const ob::State* state, double& dist, ob::State* valid_state,
+               bool& valid_state_available) const override {
+    const CheckTimer::Scope scope(*timer_);
+    timer_->state_checks.fetch_add(1, std::memory_order_relaxed);
+    return inner_->isValid(state, dist, valid_state, valid_state_available);
+  }
+  double clearance(const ob::State* state) const override {
+    const CheckTimer::Scope scope(*timer_);
+    return inner_->clearance(state);
+  }
+  double clearance(const ob::State* state, ob::State* valid_state, bool& valid_state_available) const override {
+    const CheckTimer::Scope scope(*timer_);
+    return inner_->clearance(state, valid_state, valid_state_available);
+  }
+
+ private:
+  ob::StateValidityCheckerPtr inner_;
+  std::shared_ptr<CheckTimer> timer_;
+};
+
+/// Forwards to the wrapped motion validator, counting and timing; keeps
+/// OMPL's valid/invalid motion counters (which the benchmark reports).
+class TimedMotionValidator : public ob::MotionValidator {
+ public:
+  TimedMotionValidator(ob::SpaceInformation* si, ob::MotionValidatorPtr inner, std::shared_ptr<CheckTimer> timer)
+      : ob::MotionValidator(si), inner_(std::move(inner)), timer_(std::move(timer)) {}
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    const CheckTimer::Scope scope(*timer_);
+    timer_->motion_checks.fetch_add(1, std::memory_order_relaxed);
+    return count(inner_->checkMotion(s1, s2));
+  }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& last_valid) const override {
+    const CheckTimer::Scope scope(*timer_);
+    timer_->motion_checks.fetch_add(1, std::memory_order_relaxed);
+    return count(inner_->checkMotion(s1, s2, last_valid));
+  }
+
+ private:
+  bool count(bool valid) const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (valid) {
+      ++valid_;
+    } else {
+      ++invalid_;
+    }
+    return valid;
+  }
+  ob::MotionValidatorPtr inner_;
+  std::shared_ptr<CheckTimer> timer_;
+  mutable std::mutex mutex_;
+};
+
+std::string cfgName(const Problem& problem) {
+  return problem.config.file.empty() ? problem.name + ".cfg" : problem.config.file.filename().string();
+}
+
+std::string sanitize(const std::string& name) {
+  std::string out = name;
+  for (char& c : out) {
+    const auto u = static_cast<unsigned char>(c);
+    if (!std::isalnum(u) && c != '_' && c != '.' && c != '-') c = '_';
+  }
+  return out;
+}
+
+}  // namespace
+
+// ---- Checker names ------------------------------------------------------------------
+
+const char* toString(CheckerKind kind) {
+  switch (kind) {
+    case CheckerKind::kMdd: return "mdd";
+    case CheckerKind::kFcl: return "fcl";
+    case CheckerKind::kFclContinuous: return "fcl-continuous";
+  }
+  return "?";
+}
+
+const std::vector<CheckerKind>& allCheckerKinds() {
+  static const std::vector<CheckerKind> kinds{CheckerKind::kMdd, CheckerKind::kFcl, CheckerKind::kFclContinuous};
+  return kinds;
+}
+
+CheckerKind parseCheckerKind(const std::string& name) {
+  for (CheckerKind k : allCheckerKinds()) {
+    if (name == toString(k)) return k;
+  }
+  throw InvalidInputError("unknown checker '" + name + "' (known: mdd, fcl, fcl-continuous)");
+}
+
+std::vector<CheckerKind> parseCheckerList(const std::string& list) {
+  std::vector<CheckerKind> kinds;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty()) throw InvalidInputError("empty checker name in '" + list + "'");
+    const CheckerKind k = parseCheckerKind(item);
+    for (CheckerKind seen : kinds) {
+      if (seen == k) throw InvalidInputError("checker '" + item + "' given twice in '" + list + "'");
+    }
+    kinds.push_back(k);
+  }
+  if (kinds.empty() || (!list.empty() && list.back() == ',')) {
+    throw InvalidInputError("no checker in '" + list + "' (known: mdd, fcl, fcl-continuous)");
+  }
+  return kinds;
+}
+
+std::set<std::string> ourPlannerNames() {
+  const std::vector<std::string> names = plannerNames();
+  return {names.begin(), names.end()};
+}
+
+// ---- Problem ------------------------------------------------------------------------
+
+std::shared_ptr<const scene::RigidBody> Problem::robot() const {
+  return {scene, &scene->robot};
+}
+
+std::shared_ptr<const scene::World> Problem::world() const {
+  return {scene, &scene->world};
+}
+
+Problem makeProblem(scene::ProblemConfig config, scene::ProblemScene scene) {
+  Problem p;
+  std::string name = config.name;
+  if (name.empty()) name = config.file.stem().string();
+  if (name.empty()) name = "problem";
+  p.name = sanitize(name);
+  p.config = std::move(config);
+  p.scene = std::make_shared<const scene::ProblemScene>(std::move(scene));
+  return p;
+}
+
+Problem loadProblem(const std::filesystem::path& cfg) {
+  scene::ProblemConfig config = scene::readProblemConfig(cfg, ourPlannerNames());
+  scene::ProblemScene scene = scene::loadProblemScene(config);
+  return makeProblem(std::move(config), std::move(scene));
+}
+
+SpaceKind toPlanningKind(scene::SpaceKind kind) {
+  switch (kind) {
+    case scene::SpaceKind::kSE2: return SpaceKind::kSE2;
+    case scene::SpaceKind::kSE3: return SpaceKind::kSE3;
+    case scene::SpaceKind::kR2: return SpaceKind::kR2;
+    case scene::SpaceKind::kR3: return SpaceKind::kR3;
+  }
+  throw InvalidInputError("unknown space kind");
+}
+
+// ---- ProblemSetup -------------------------------------------------------------------
+
+ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const SetupOptions& options)
+    : problem_(problem), checker_(checker), timer_(std::make_shared<CheckTimer>()) {
+  if (!problem_.scene) throw InvalidInputError("ProblemSetup: the problem has no scene");
+  const scene::ProblemScene& sc = *problem_.scene;
+  const scene::ProblemConfig& cfg = problem_.config;
+  const std::string where = cfgName(problem_);
+
+  // 1. The state space.
+  const SpaceKind kind = toPlanningKind(sc.space);
+  try {
+    space_ = PlanningSpace::make(kind, sc.bounds, sc.start.translation().z(), Eigen::Quaterniond(sc.start.linear()));
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(where + ": " + e.what());
+  }
+  ss_ = std::make_shared<og::SimpleSetup>(space_->stateSpace());
+  const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
+
+  // 2. The checkers, wrapped.
+  ob::StateValidityCheckerPtr state_checker;
+  ob::MotionValidatorPtr motion_validator;
+  switch (checker) {
+    case CheckerKind::kMdd: {
+      auto scene = std::make_shared<MddScene>(problem_.robot(), problem_.world(), options.mdd);
+      mdd_state_ = std::make_shared<MddStateValidityChecker>(si, space_, scene);
+      mdd_motion_ = std::make_shared<MddMotionValidator>(si, space_, scene);
+      mdd_state_->setTiming(false);
+      mdd_motion_->setTiming(false);
+      state_checker = mdd_state_;
+      motion_validator = mdd_motion_;
+      break;
+    }
+    case CheckerKind::kFcl:
+    case CheckerKind::kFclContinuous: {
+      auto scene = std::make_shared<FclScene>(problem_.robot(), problem_.world());
+      fcl_state_ = std::make_shared<FclStateValidityChecker>(si, space_, scene);
+      fcl_state_->setTiming(false);
+      state_checker = fcl_state_;
+      if (checker == CheckerKind::kFcl) {
+        motion_validator = std::make_shared<ob::DiscreteMotionValidator>(si);
+      } else {
+        FclCcdOptions ccd;
+        ccd.solver = options.continuous_solver;
+        fcl_motion_ = std::make_shared<FclContinuousMotionValidator>(si, space_, scene, ccd);
+        fcl_motion_->setTiming(false);
+        motion_validator = fcl_motion_;
+      }
+      break;
+    }
+  }
+  si->setStateValidityChecker(std::make_shared<TimedStateValidityChecker>(si.get(), state_checker, timer_));
+  si->setMotionValidator(std::make_shared<TimedMotionValidator>(si.get(), motion_validator, timer_));
+  si->setup();  // the state space's projections (and their parameters) exist from here on
+
+  // 3. Space parameters, then the values the planners' contexts will restore.
+  applyParameters(cfg.space_parameters, where + ": [problem] ");
+  for (const scene::PlannerSpec& spec : cfg.planners) {
+    const std::string at = where + ":" + std::to_string(spec.line) + ": problem.";
+    for (const auto& [key, value] : spec.context) {
+      if (key == "sampler") continue;
+      std::string current;
+      if (!si->params().getParam(key, current)) {
+        throw InvalidInputError(at + key + ": not a parameter of OMPL's space information");
+      }
+      baseline_.emplace(key, current);
+    }
+  }
+  for (const auto& [key, value] : cfg.space_parameters) {
+    if (key == "sampler") baseline_sampler_ = value;
+  }
+
+  // 4. Start, goal, objective.
+  ob::ScopedState<> start(space_->stateSpace());
+  ob::ScopedState<> goal(space_->stateSpace());
+  try {
+    space_->setPose(sc.start, start.get());
+    space_->setPose(sc.goal, goal.get());
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(where + ": start or goal: " + e.what());
+  }
+  const double threshold = cfg.threshold.value_or(scene::kDefaultGoalThreshold);
+  if (!(threshold > 0.0)) throw InvalidInputError(where + ": threshold must be positive");
+  ss_->setStartAndGoalStates(start, goal, threshold);
+  if (!cfg.objective.empty()) {
+    ob::OptimizationObjectivePtr objective;
+    if (cfg.objective == "length") {
+      objective = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+    } else if (cfg.objective == "max_min_clearance") {
+      objective = std::make_shared<ob::MaximizeMinClearanceObjective>(si);
+    } else if (cfg.objective == "mechanical_work") {
+      objective = std::make_shared<ob::MechanicalWorkOptimizationObjective>(si);
+    } else {
+      throw InvalidInputError(where + ": unknown objective '" + cfg.objective +
+                              "' (length, max_min_clearance, mechanical_work)");
+    }
+    if (cfg.objective_threshold) objective->setCostThreshold(ob::Cost(*cfg.objective_threshold));
+    ss_->setOptimizationObjective(objective);
+  }
+}
+
+ProblemSetup::~ProblemSetup() = default;
+
+void ProblemSetup::setSampler(const std::string& name, const std::string& where) {
+  const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
+  if (name.empty()) {
+    si->clearValidStateSamplerAllocator();
+    return;
+  }
+  ob::ValidStateSamplerAllocator alloc;
+  if (name == "uniform") {
+    alloc = [](const ob::SpaceInformation* s) { return std::make_shared<ob::UniformValidStateSampler>(s); };
+  } else if (name == "gaussian") {
+    alloc = [](const ob::SpaceInformation* s) { return std::make_shared<ob::GaussianValidStateSampler>(s); };
+  } else if (name == "obstacle_based") {
+    alloc = [](const ob::SpaceInformation* s) { return std::make_shared<ob::ObstacleBasedValidStateSampler>(s); };
+  } else if (name == "max_clearance") {
+    alloc = [](const ob::SpaceInformation* s) { return std::make_shared<ob::MaximizeClearanceValidStateSampler>(s); };
+  } else {
+    throw InvalidInputError(where + "sampler: unknown sampler '" + name +
+                            "' (uniform, gaussian, obstacle_based, max_clearance)");
+  }
+  si->setValidStateSamplerAllocator(alloc);
+}
+
+void ProblemSetup::applyParameters(const std::vector<std::pair<std::string, std::string>>& params,
+                                   const std::string& where) {
+  const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
+  for (const auto& [key, value] : params) {
+    if (key == "sampler") {
+      setSampler(value, where);
+      continue;
+    }
+    if (!si->params().hasParam(key)) {
+      std::vector<std::string> names;
+      si->params().getParamNames(names);
+      std::string known;
+      for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw InvalidInputError(where + key + ": not a parameter of OMPL's space information (its parameters: " + known +
+                              ", and sampler)");
+    }
+    bool ok = false;
+    try {
+      ok = si->params().setParam(key, value);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    if (!ok) throw InvalidInputError(where + key + ": OMPL rejects the value '" + value + "'");
+  }
+  si->setup();  // recompute what depends on them (the longest valid segment, projections)
+}
+
+void ProblemSetup::applyPlannerContext(const scene::PlannerSpec& spec) {
+  const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
+  for (const auto& [key, value] : baseline_) si->params().setParam(key, value);
+  setSampler(baseline_sampler_, cfgName(problem_) + ": [problem] ");
+  applyParameters(spec.context, cfgName(problem_) + ":" + std::to_string(spec.line) + ": problem.");
+}
+
+ob::PlannerPtr ProblemSetup::makePlanner(const scene::PlannerSpec& spec) const {
+  const std::string at = cfgName(problem_) + ":" + std::to_string(spec.line) + ": ";
+  ob::PlannerPtr planner;
+  try {
+    planner = planning::makePlanner(spec.name, ss_->getSpaceInformation(), spec.params);
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(at + e.what());
+  } catch (const std::exception& e) {  // OMPL's own exceptions from a parameter's setter
+    throw InvalidInputError(at + "planner '" + spec.name + "': " + e.what());
+  }
+  bool named = false;
+  for (const auto& [key, value] : spec.params) named = named || key == "name";
+  if (!named) planner->setName(spec.name);
+  return planner;
+}
+
+CheckStats ProblemSetup::stats() const {
+  CheckStats s;
+  s.state_checks = timer_->state_checks.load(std::memory_order_relaxed);
+  s.motion_checks = timer_->motion_checks.load(std::memory_order_relaxed);
+  s.seconds = static_cast<double>(timer_->nanoseconds.load(std::memory_order_relaxed)) * 1e-9;
+  if (mdd_state_) s.pair_queries += mdd_state_->counts().pair_queries;
+  if (mdd_motion_) {
+    const CheckerCounts c = mdd_motion_->counts();
+    s.pair_queries += c.pair_queries;
+    s.sub_edges += c.sub_edges;
+  }
+  if (fcl_state_) s.pair_queries += fcl_state_->counts().pair_queries;
+  if (fcl_motion_) s.pair_queries += fcl_motion_->counts().pair_queries;
+  return s;
+}
+
+void ProblemSetup::resetStats() {
+  timer_->reset();
+  if (mdd_state_) mdd_state_->resetCounts();
+  if (mdd_motion_) mdd_motion_->resetCounts();
+  if (fcl_state_) fcl_state_->resetCounts();
+  if (fcl_motion_) fcl_motion_->resetCounts();
+}
+
+}  // namespace mddual::planning

@@ -1,0 +1,253 @@
+// The planning front end: checker and shard parsing, a cfg's problem set up in
+// OMPL (space parameters, planner parameters and contexts, start, goal,
+// threshold, objective), the checkers' counters, and its errors.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <ompl/base/ScopedState.h>
+#include <ompl/base/goals/GoalState.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "mddual/error.h"
+#include "mddual/planning/bench_runner.h"
+#include "mddual/planning/problem_setup.h"
+#include "tiny_config.h"
+
+namespace mddual::planning {
+namespace {
+
+namespace ob = ompl::base;
+namespace fs = std::filesystem;
+
+/// A fresh folder per test, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / ("mddual_frontend_" + std::string(info->test_suite_name()) + "_" +
+                                         info->name() + "_" + std::to_string(static_cast<long>(::getpid())));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+/// Expects `f` to throw InvalidInputError whose message contains `needle`.
+void expectError(const std::function<void()>& f, const std::string& needle) {
+  try {
+    f();
+    ADD_FAILURE() << "no error (expected one mentioning '" << needle << "')";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(FrontendNames, Checkers) {
+  EXPECT_EQ(parseCheckerKind("mdd"), CheckerKind::kMdd);
+  EXPECT_EQ(parseCheckerKind("fcl"), CheckerKind::kFcl);
+  EXPECT_EQ(parseCheckerKind("fcl-continuous"), CheckerKind::kFclContinuous);
+  for (CheckerKind k : allCheckerKinds()) EXPECT_EQ(parseCheckerKind(toString(k)), k);
+  EXPECT_EQ(parseCheckerList("fcl,mdd"), (std::vector<CheckerKind>{CheckerKind::kFcl, CheckerKind::kMdd}));
+  expectError([] { parseCheckerKind("foo"); }, "unknown checker 'foo' (known: mdd, fcl, fcl-continuous)");
+  expectError([] { parseCheckerList("mdd,foo"); }, "unknown checker 'foo'");
+  expectError([] { parseCheckerList("mdd,mdd"); }, "given twice");
+  expectError([] { parseCheckerList(""); }, "no checker");
+  expectError([] { parseCheckerList("mdd,"); }, "no checker");
+  expectError([] { parseCheckerList("mdd,,fcl"); }, "empty checker name");
+}
+
+TEST(FrontendNames, Shards) {
+  const BenchShard s = parseShard("1/3");
+  EXPECT_EQ(s.index, 1);
+  EXPECT_EQ(s.count, 3);
+  EXPECT_TRUE(s.sharded());
+  EXPECT_FALSE(parseShard("0/1").sharded());
+  EXPECT_EQ(toString(s), "1/3");
+  for (const char* bad : {"3/2", "2/2", "-1/2", "1", "a/b", "1/0", "/2", "1/", "0/2/3", " 0/2"}) {
+    expectError([bad] { parseShard(bad); }, "--shard '" + std::string(bad) + "'");
+  }
+  EXPECT_EQ(shardRuns(7, parseShard("1/3")), (std::vector<int>{1, 4}));
+  EXPECT_EQ(shardRuns(7, parseShard("0/1")), (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  // The shards of any N partition the runs.
+  for (int n = 1; n <= 5; ++n) {
+    std::vector<int> seen(9, 0);
+    for (int i = 0; i < n; ++i) {
+      for (int r : shardRuns(9, BenchShard{i, n})) ++seen[static_cast<std::size_t>(r)];
+    }
+    EXPECT_EQ(seen, std::vector<int>(9, 1)) << n;
+  }
+  EXPECT_EQ(logFileName("tiny", CheckerKind::kFclContinuous, BenchShard{}), "tiny-fcl-continuous.log");
+  EXPECT_EQ(logFileName("tiny", CheckerKind::kMdd, BenchShard{1, 4}), "tiny-mdd.shard1of4.log");
+}
+
+class FrontendSetup : public ::testing::Test {
+ protected:
+  void SetUp() override { ompl::msg::setLogLevel(ompl::msg::LOG_ERROR); }
+  TempDir dir_;
+};
+
+TEST_F(FrontendSetup, SetsSpaceParametersPlannerParametersAndContexts) {
+  testing::TinyConfigText text;
+  text.problem_extra = "longest_valid_segment_fraction = 0.05\nthreshold = 0.01\nobjective = length\n";
+  text.planners =
+      "rrtconnect =\nrrtconnect.range = 3.5\n"
+      "rrt =\nproblem.longest_valid_segment_fraction = 0.2\nrrt.goal_bias = 0.25\n"
+      "mdd_rrtconnect =\n";
+  const Problem problem = loadProblem(testing::writeTinyConfig(dir_.path(), text));
+  EXPECT_EQ(problem.name, "tiny");
+  ASSERT_EQ(problem.config.planners.size(), 3u);
+  for (CheckerKind kind : allCheckerKinds()) {
+    ProblemSetup setup(problem, kind);
+    const ob::SpaceInformationPtr& si = setup.spaceInformation();
+    const ob::StateSpacePtr& space = si->getStateSpace();
+    const double extent = space->getMaximumExtent();
+    EXPECT_NEAR(extent, std::sqrt(300.0), 1e-12);
+    // The cfg's space parameter, in effect (the segment length follows it).
+    EXPECT_DOUBLE_EQ(space->getLongestValidSegmentFraction(), 0.05);
+    EXPECT_NEAR(space->getLongestValidSegmentLength(), 0.05 * extent, 1e-12);
+    EXPECT_EQ(setup.planningSpace()->kind(), SpaceKind::kR3);
+
+    // Planners: the cfg's names and parameters.
+    const ob::PlannerPtr connect = setup.makePlanner(problem.config.planners[0]);
+    EXPECT_EQ(connect->getName(), "rrtconnect");
+    EXPECT_EQ(connect->params().getParam("range")->getValue(), "3.5");
+    const ob::PlannerPtr rrt = setup.makePlanner(problem.config.planners[1]);
+    EXPECT_EQ(rrt->getName(), "rrt");
+    EXPECT_EQ(rrt->params().getParam("goal_bias")->getValue(), "0.25");
+    EXPECT_EQ(setup.makePlanner(problem.config.planners[2])->getName(), "mdd_rrtconnect");
+
+    // Contexts: rrt's on top of the space parameters, and reset for the others.
+    setup.applyPlannerContext(problem.config.planners[1]);
+    EXPECT_DOUBLE_EQ(space->getLongestValidSegmentFraction(), 0.2);
+    EXPECT_NEAR(space->getLongestValidSegmentLength(), 0.2 * extent, 1e-12);
+    setup.applyPlannerContext(problem.config.planners[2]);
+    EXPECT_DOUBLE_EQ(space->getLongestValidSegmentFraction(), 0.05);
+    EXPECT_NEAR(space->getLongestValidSegmentLength(), 0.05 * extent, 1e-12);
+
+    // Start, goal, threshold, objective.
+    const ob::ProblemDefinitionPtr& pdef = setup.simpleSetup().getProblemDefinition();
+    ASSERT_EQ(pdef->getStartStateCount(), 1u);
+    const Eigen::Isometry3d start = setup.planningSpace()->pose(pdef->getStartState(0));
+    EXPECT_TRUE(start.translation().isApprox(Eigen::Vector3d(2, 5, 5)));
+    const auto* goal = dynamic_cast<const ob::GoalState*>(pdef->getGoal().get());
+    ASSERT_NE(goal, nullptr);
+    EXPECT_DOUBLE_EQ(goal->getThreshold(), 0.01);
+    EXPECT_TRUE(setup.planningSpace()->pose(goal->getState()).translation().isApprox(Eigen::Vector3d(8, 5, 5)));
+    EXPECT_TRUE(pdef->hasOptimizationObjective());
+  }
+}
+
+TEST_F(FrontendSetup, DefaultsAndPlannersSolveWithEveryChecker) {
+  const Problem problem = loadProblem(testing::writeTinyConfig(dir_.path()));
+  for (CheckerKind kind : allCheckerKinds()) {
+    ProblemSetup setup(problem, kind);
+    const auto& pdef = setup.simpleSetup().getProblemDefinition();
+    const auto* goal = dynamic_cast<const ob::GoalState*>(pdef->getGoal().get());
+    ASSERT_NE(goal, nullptr);
+    EXPECT_DOUBLE_EQ(goal->getThreshold(), scene::kDefaultGoalThreshold);
+    EXPECT_FALSE(pdef->hasOptimizationObjective());
+    EXPECT_DOUBLE_EQ(setup.spaceInformation()->getStateSpace()->getLongestValidSegmentFraction(), 0.01);
+    setup.simpleSetup().setPlanner(setup.makePlanner(problem.config.planners[1]));
+    setup.resetStats();
+    EXPECT_TRUE(setup.simpleSetup().solve(5.0)) << toString(kind);
+    const CheckStats st = setup.stats();
+    EXPECT_GT(st.motion_checks, 0u) << toString(kind);
+    EXPECT_GT(st.state_checks, 0u) << toString(kind);
+    EXPECT_GT(st.pair_queries, 0u) << toString(kind);
+    EXPECT_GT(st.seconds, 0.0) << toString(kind);
+    setup.resetStats();
+    EXPECT_EQ(setup.stats().motion_checks, 0u);
+    EXPECT_EQ(setup.stats().seconds, 0.0);
+  }
+}
+
+TEST_F(FrontendSetup, CountsChecksOnceAndTimesThemOnce) {
+  const Problem problem = loadProblem(testing::writeTinyConfig(dir_.path()));
+  for (CheckerKind kind : allCheckerKinds()) {
+    ProblemSetup setup(problem, kind);
+    const ob::SpaceInformationPtr& si = setup.spaceInformation();
+    ob::ScopedState<> a(si->getStateSpace());
+    ob::ScopedState<> b(si->getStateSpace());
+    setup.planningSpace()->setPose(problem.scene->start, a.get());
+    Eigen::Isometry3d X = problem.scene->start;
+    X.translation().y() = 7.5;  // through the door: free
+    setup.planningSpace()->setPose(X, b.get());
+    setup.resetStats();
+    EXPECT_TRUE(si->isValid(a.get()));
+    EXPECT_TRUE(si->checkMotion(a.get(), b.get()));
+    const CheckStats st = setup.stats();
+    EXPECT_EQ(st.motion_checks, 1u) << toString(kind);
+    // fcl: OMPL's discrete validator checks its samples with the state checker.
+    if (kind == CheckerKind::kFcl) {
+      EXPECT_GT(st.state_checks, 2u);
+    } else {
+      EXPECT_GE(st.state_checks, 1u);
+    }
+    EXPECT_EQ(si->getMotionValidator()->getValidMotionCount(), 1u);
+    EXPECT_GT(st.seconds, 0.0);
+  }
+}
+
+TEST_F(FrontendSetup, Errors) {
+  {
+    testing::TinyConfigText text;
+    text.problem_extra = "no_such_parameter = 3\n";
+    const Problem p = loadProblem(testing::writeTinyConfig(dir_.path(), text));
+    expectError([&] { ProblemSetup s(p, CheckerKind::kMdd); }, "no_such_parameter: not a parameter");
+  }
+  {
+    testing::TinyConfigText text;
+    text.problem_extra = "longest_valid_segment_fraction = 7\n";
+    const Problem p = loadProblem(testing::writeTinyConfig(dir_.path(), text));
+    expectError([&] { ProblemSetup s(p, CheckerKind::kFcl); }, "longest_valid_segment_fraction: OMPL rejects");
+  }
+  {
+    testing::TinyConfigText text;
+    text.problem_extra = "sampler = fancy\n";
+    const Problem p = loadProblem(testing::writeTinyConfig(dir_.path(), text));
+    expectError([&] { ProblemSetup s(p, CheckerKind::kFcl); }, "unknown sampler 'fancy'");
+  }
+  {
+    testing::TinyConfigText text;
+    text.planners = "rrtconnect =\nrrtconnect.no_such = 1\n";
+    const Problem p = loadProblem(testing::writeTinyConfig(dir_.path(), text));
+    ProblemSetup s(p, CheckerKind::kMdd);
+    expectError([&] { s.makePlanner(p.config.planners[0]); }, "tiny.cfg:33: planner 'rrtconnect' has no parameter");
+  }
+  {
+    testing::TinyConfigText text;
+    text.planners = "rrt =\nproblem.bogus = 1\n";
+    const Problem p = loadProblem(testing::writeTinyConfig(dir_.path(), text));
+    expectError([&] { ProblemSetup s(p, CheckerKind::kMdd); }, "tiny.cfg:33: problem.bogus: not a parameter");
+  }
+  // Planner selection by the cfg's names.
+  const Problem p = loadProblem(testing::writeTinyConfig(dir_.path()));
+  EXPECT_EQ(selectPlanners(p, {}).size(), 2u);
+  ASSERT_EQ(selectPlanners(p, {"mdd_rrtconnect"}).size(), 1u);
+  EXPECT_EQ(selectPlanners(p, {"mdd_rrtconnect"})[0].name, "mdd_rrtconnect");
+  expectError([&] { selectPlanners(p, {"prm"}); },
+              "planner 'prm' is not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)");
+  // Bad config files name the file and line.
+  {
+    testing::TinyConfigText text;
+    text.problem_extra = "this line has no equals sign\n";
+    const fs::path cfg = testing::writeTinyConfig(dir_.path() / "malformed", text);
+    expectError([&] { loadProblem(cfg); }, "tiny.cfg:26");
+  }
+  expectError([&] { loadProblem(dir_.path() / "missing.cfg"); }, "missing.cfg");
+}
+
+}  // namespace
+}  // namespace mddual::planning

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -42,6 +43,52 @@ int parseInt(const std::string& text, const std::string& what) {
 std::string cfgName(const Problem& problem) {
   return problem.config.file.empty() ? problem.name + ".cfg" : problem.config.file.filename().string();
 }
+
+/// Runs a planner and calls `solved` the moment its solve() returns, before
+/// OMPL's benchmark checks the solution path: the checkers' counters are read
+/// there. Everything else is the wrapped planner's: name, parameters (the
+/// log's settings), specs, progress properties, planner data.
+class MeteredPlanner : public ob::Planner {
+ public:
+  MeteredPlanner(ob::PlannerPtr inner, std::function<void()> solved)
+      : ob::Planner(inner->getSpaceInformation(), inner->getName()),
+        inner_(std::move(inner)),
+        solved_(std::move(solved)) {
+    specs_ = inner_->getSpecs();
+    params_.include(inner_->params());
+    plannerProgressProperties_ = inner_->getPlannerProgressProperties();
+  }
+  ob::PlannerStatus solve(const ob::PlannerTerminationCondition& ptc) override {
+    ob::PlannerStatus status;
+    try {
+      status = inner_->solve(ptc);
+    } catch (...) {
+      solved_();
+      throw;
+    }
+    solved_();
+    return status;
+  }
+  void setProblemDefinition(const ob::ProblemDefinitionPtr& pdef) override {
+    ob::Planner::setProblemDefinition(pdef);
+    inner_->setProblemDefinition(pdef);
+  }
+  void clear() override { inner_->clear(); }
+  void clearQuery() override { inner_->clearQuery(); }
+  void setup() override {
+    inner_->setup();
+    setup_ = true;
+  }
+  void checkValidity() override { inner_->checkValidity(); }
+  void getPlannerData(ob::PlannerData& data) const override { inner_->getPlannerData(data); }
+  void printProperties(std::ostream& out) const override { inner_->printProperties(out); }
+  void printSettings(std::ostream& out) const override { inner_->printSettings(out); }
+  const ob::PlannerPtr& inner() const { return inner_; }
+
+ private:
+  ob::PlannerPtr inner_;
+  std::function<void()> solved_;
+};
 
 /// Writes a path as OMPL's printAsMatrix does (one state per line).
 void savePath(const og::PathGeometric& path, const std::filesystem::path& file) {
@@ -148,14 +195,18 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     // Planners in cfg order, named as in the cfg (repeats numbered); every
     // context tried once now, so that a bad value fails here and not inside
     // OMPL's benchmark (which would only log it).
+    // Each planner is metered: the checkers' counters are read when its
+    // solve() returns (solve_stats), before OMPL checks the path.
     std::vector<ob::PlannerPtr> planners;
     std::map<const ob::Planner*, std::size_t> spec_of;
     std::map<std::string, int> seen;
+    CheckStats solve_stats;
     for (std::size_t i = 0; i < specs.size(); ++i) {
       ob::PlannerPtr p = setup.makePlanner(specs[i]);
       const int count = ++seen[p->getName()];
       if (count > 1) p->setName(p->getName() + "_" + std::to_string(count));
       setup.applyPlannerContext(specs[i]);
+      p = std::make_shared<MeteredPlanner>(p, [&setup, &solve_stats] { solve_stats = setup.stats(); });
       spec_of[p.get()] = i;
       planners.push_back(p);
     }
@@ -189,6 +240,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     });
     bench.setPreRunEvent([&](const ob::PlannerPtr& planner) {
       setup.resetStats();
+      solve_stats = CheckStats();
       const int k = static_cast<int>(bench.getStatus().activeRun);
       if (observer.run_started && k < n) {
         observer.run_started(checker, planner->getName(), k, n, run_indices[static_cast<std::size_t>(k)]);
@@ -196,7 +248,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     });
     bench.setPostRunEvent([&](const ob::PlannerPtr& planner, ot::Benchmark::RunProperties& run) {
       // Never throws: every run is kept, whatever happens here.
-      const CheckStats st = setup.stats();
+      const CheckStats st = solve_stats;
       const int k = static_cast<int>(bench.getStatus().activeRun);
       const int r = k < n ? run_indices[static_cast<std::size_t>(k)] : -1;
       run["run index INTEGER"] = std::to_string(r);

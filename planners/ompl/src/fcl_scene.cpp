@@ -93,6 +93,34 @@ std::shared_ptr<Geometry> privateCopy(const std::shared_ptr<Geometry>& g) {
   return model;
 }
 
+bool isBvh(const Geometry* g) {
+  return dynamic_cast<const fcl::BVHModel<fcl::OBBRSS<double>>*>(g) != nullptr;
+}
+
+/// `g` as a BVH triangle model when it is an fcl::Convex (its faces fanned
+/// into triangles), else `g`. FCL 0.7's conservative advancement between a
+/// convex shape and a BVH model crashes (shape first: unbounded recursion in
+/// distanceRecurse) or misses contacts (BVH first); mesh-mesh works, so a
+/// mixed pair is checked as two meshes.
+std::shared_ptr<Geometry> asMesh(const std::shared_ptr<Geometry>& g) {
+  const auto* convex = dynamic_cast<const fcl::Convex<double>*>(g.get());
+  if (!convex) return g;
+  const std::vector<int>& faces = convex->getFaces();
+  std::vector<fcl::Triangle> triangles;
+  for (std::size_t i = 0; i < faces.size(); i += static_cast<std::size_t>(faces[i]) + 1) {
+    for (int k = 1; k + 1 < faces[i]; ++k) {
+      triangles.emplace_back(static_cast<std::size_t>(faces[i + 1]), static_cast<std::size_t>(faces[i + 1 + k]),
+                             static_cast<std::size_t>(faces[i + 2 + k]));
+    }
+  }
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(convex->getVertices().size()));
+  model->addSubModel(convex->getVertices(), triangles);
+  model->endModel();
+  model->computeLocalAABB();
+  return model;
+}
+
 fcl::AABB<double> toFcl(const Eigen::AlignedBox3d& b) {
   return fcl::AABB<double>(b.min(), b.max());
 }
@@ -155,6 +183,9 @@ struct FclScene::Impl {
     std::unique_ptr<BoxQuery> query;
     std::vector<std::shared_ptr<Geometry>> robot_ccd;
     std::vector<std::shared_ptr<Geometry>> world_ccd;
+    /// The same as meshes (asMesh), when the scene mixes shapes and meshes.
+    std::vector<std::shared_ptr<Geometry>> robot_ccd_mesh;
+    std::vector<std::shared_ptr<Geometry>> world_ccd_mesh;
   };
 
   std::shared_ptr<const scene::RigidBody> robot;
@@ -177,6 +208,17 @@ struct FclScene::Impl {
       l->query = std::make_unique<BoxQuery>(query_box);
       for (const auto& g : robot_geometry) l->robot_ccd.push_back(privateCopy(g));
       for (const auto& g : world_geometry) l->world_ccd.push_back(privateCopy(g));
+      const auto bvhs = [](const std::vector<std::shared_ptr<Geometry>>& gs) {
+        return std::count_if(gs.begin(), gs.end(), [](const auto& g) { return isBvh(g.get()); });
+      };
+      const auto robot_bvhs = bvhs(l->robot_ccd);
+      const auto world_bvhs = bvhs(l->world_ccd);
+      const bool mixed = (robot_bvhs > 0 && world_bvhs < static_cast<long>(l->world_ccd.size())) ||
+                         (world_bvhs > 0 && robot_bvhs < static_cast<long>(l->robot_ccd.size()));
+      if (mixed) {
+        for (const auto& g : l->robot_ccd) l->robot_ccd_mesh.push_back(asMesh(g));
+        for (const auto& g : l->world_ccd) l->world_ccd_mesh.push_back(asMesh(g));
+      }
       return l;
     });
   }
@@ -296,8 +338,13 @@ FclScene::Continuous FclScene::continuousCollide(const Eigen::Isometry3d& X_star
       fcl::ContinuousCollisionResult<double> result;
       ++out.pair_queries;
       const auto index = reinterpret_cast<std::size_t>(w->getUserData());
-      fcl::continuousCollide(local->robot_ccd[k].get(), X_start, X_to, local->world_ccd[index].get(), identity,
-                             identity, request, result);
+      const Geometry* robot_g = local->robot_ccd[k].get();
+      const Geometry* world_g = local->world_ccd[index].get();
+      if (request.ccd_solver_type == fcl::CCDC_CONSERVATIVE_ADVANCEMENT && isBvh(robot_g) != isBvh(world_g)) {
+        robot_g = local->robot_ccd_mesh[k].get();  // see asMesh
+        world_g = local->world_ccd_mesh[index].get();
+      }
+      fcl::continuousCollide(robot_g, X_start, X_to, world_g, identity, identity, request, result);
       if (result.is_collide && result.time_of_contact < out.time) {
         out.collides = true;
         out.time = std::max(0.0, result.time_of_contact);

@@ -8,6 +8,7 @@
 #include <ompl/base/goals/GoalState.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/util/Console.h>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -165,7 +166,6 @@ TEST_F(FrontendSetup, DefaultsAndPlannersSolveWithEveryChecker) {
     const CheckStats st = setup.stats();
     EXPECT_GT(st.motion_checks, 0u) << toString(kind);
     EXPECT_GT(st.state_checks, 0u) << toString(kind);
-    EXPECT_GT(st.pair_queries, 0u) << toString(kind);
     EXPECT_GT(st.seconds, 0.0) << toString(kind);
     setup.resetStats();
     EXPECT_EQ(setup.stats().motion_checks, 0u);
@@ -197,6 +197,73 @@ TEST_F(FrontendSetup, CountsChecksOnceAndTimesThemOnce) {
     }
     EXPECT_EQ(si->getMotionValidator()->getValidMotionCount(), 1u);
     EXPECT_GT(st.seconds, 0.0);
+  }
+}
+
+// A convex robot against a world mesh (triangles): FCL 0.7's conservative
+// advancement between a shape and a mesh crashes or misses contacts; the FCL
+// baseline checks such pairs as two meshes (planners/ompl/src/fcl_scene.cpp).
+TEST_F(FrontendSetup, ContinuousCheckerWithAMeshWorld) {
+  // Two separate boxes in one OBJ: not convex, so it loads as triangles.
+  std::string obj;
+  for (const double x0 : {4.0, 6.0}) {
+    for (int i = 0; i < 8; ++i) {
+      obj += "v " + std::to_string(i & 1 ? x0 + 0.05 : x0) + " " + std::to_string(i & 2 ? 10.0 : 0.0) + " " +
+             std::to_string(i & 4 ? 10.0 : 0.0) + "\n";
+    }
+  }
+  for (const int base : {1, 9}) {
+    for (const auto& f : {std::array<int, 3>{0, 1, 3},
+                          {0, 3, 2},
+                          {4, 7, 5},
+                          {4, 6, 7},
+                          {0, 5, 1},
+                          {0, 4, 5},
+                          {2, 3, 7},
+                          {2, 7, 6},
+                          {0, 2, 6},
+                          {0, 6, 4},
+                          {1, 7, 3},
+                          {1, 5, 7}}) {
+      obj += "f " + std::to_string(base + f[0]) + " " + std::to_string(base + f[1]) + " " +
+             std::to_string(base + f[2]) + "\n";
+    }
+  }
+  const fs::path cfg = testing::writeTinyConfig(dir_.path());
+  testing::writeTextFile(dir_.path() / "walls.obj", obj);
+  testing::writeTextFile(dir_.path() / "world.urdf",
+                         "<?xml version=\"1.0\"?>\n<robot name=\"walls\"><link name=\"walls\"><collision><geometry>"
+                         "<mesh filename=\"walls.obj\"/></geometry></collision></link></robot>\n");
+  const Problem problem = loadProblem(cfg);
+  ASSERT_GT(problem.world()->pieces().size(), 2u);
+  EXPECT_EQ(problem.world()->pieces()[0].kind, scene::PieceKind::kTriangle);
+  for (const FclCcdSolver solver : {FclCcdSolver::kConservativeAdvancement, FclCcdSolver::kNaive}) {
+    SetupOptions options;
+    options.continuous_solver = solver;
+    ProblemSetup setup(problem, CheckerKind::kFclContinuous, options);
+    const ob::SpaceInformationPtr& si = setup.spaceInformation();
+    ob::ScopedState<> a(si->getStateSpace());
+    ob::ScopedState<> b(si->getStateSpace());
+    auto at = [&](double x, ob::ScopedState<>& s) {
+      Eigen::Isometry3d X = problem.scene->start;
+      X.translation().x() = x;
+      setup.planningSpace()->setPose(X, s.get());
+    };
+    at(4.5, a);
+    at(5.5, b);
+    EXPECT_TRUE(si->checkMotion(a.get(), b.get()));  // between the walls
+    at(2.0, a);
+    at(5.0, b);
+    std::pair<ob::State*, double> last(nullptr, -1.0);
+    const bool valid = si->checkMotion(a.get(), b.get(), last);  // through the first wall
+    if (solver == FclCcdSolver::kNaive) {
+      EXPECT_FALSE(valid);  // 10 samples 0.33 apart: the 0.55 overlap interval is seen
+      EXPECT_GE(last.second, 0.0);
+      EXPECT_LE(2.0 + 3.0 * last.second, 4.0 - 0.25);
+    }
+    // Conservative advancement: FCL 0.7's answer, whatever it is (its mesh-mesh
+    // advancement misses this wall), but no crash.
+    EXPECT_EQ(setup.stats().motion_checks, 2u);
   }
 }
 

@@ -15,10 +15,10 @@
 //   run index INTEGER          the run's index r among the cfg's runs (shards
 //                              hold disjoint sets of r)
 //   state checks INTEGER, motion checks INTEGER, pair queries INTEGER,
-//   sub edges INTEGER, checking time REAL
-//                              the checkers' work during the run (ProblemSetup::
-//                              stats(): planning, plus OMPL's two checks of
-//                              the solution path right after it)
+//                              sub edges INTEGER, checking time REAL
+//                              the checkers' work during the planner's solve()
+//                              (ProblemSetup::stats() read the moment it returns,
+//                              before OMPL checks the solution path)
 //   verified BOOLEAN           an exact solution that PathVerifier found valid
 //   invalid solution BOOLEAN   an exact solution that it found in collision
 //   invalid by mdd BOOLEAN, invalid by fcl BOOLEAN

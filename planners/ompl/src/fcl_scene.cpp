@@ -100,8 +100,9 @@ bool isBvh(const Geometry* g) {
 /// `g` as a BVH triangle model when it is an fcl::Convex (its faces fanned
 /// into triangles), else `g`. FCL 0.7's conservative advancement between a
 /// convex shape and a BVH model crashes (shape first: unbounded recursion in
-/// distanceRecurse) or misses contacts (BVH first); mesh-mesh works, so a
-/// mixed pair is checked as two meshes.
+/// distanceRecurse) or misses even a thick obstacle (BVH first), so a mixed
+/// pair is checked as two meshes, the pair kind FCL's advancement supports (it
+/// still misses some thin walls there, as between convex shapes).
 std::shared_ptr<Geometry> asMesh(const std::shared_ptr<Geometry>& g) {
   const auto* convex = dynamic_cast<const fcl::Convex<double>*>(g.get());
   if (!convex) return g;

@@ -1,0 +1,74 @@
+#!/usr/bin/env bash
+# The full benchmark runs behind docs/results/: every config of configs/ with
+# all three checkers (mdd, fcl, fcl-continuous) and the config's planners, with
+# the run counts and time limits below (the same for every checker; chosen so
+# that each config takes at most about 15 minutes on a 2-core machine). Builds
+# mddual (Release, build/release), runs `mddual bench` per config into
+# out/bench-full/<config>/, then writes docs/results/: one plot per config
+# (<config>.png) and README.md with the machine, the commands, each config's
+# wall time and its summary table.
+#
+#   scripts/run-full-bench.sh                  all five configs (about 35 minutes)
+#   scripts/run-full-bench.sh thin_walls maze_se2   some of them (docs/results/README.md
+#                                              then lists only those)
+# MDDUAL_FULL_BENCH_OUT changes out/bench-full; MDDUAL_JOBS the build's parallelism.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+./scripts/install-deps.sh
+jobs="${MDDUAL_JOBS:-$(nproc)}"
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/release -j "$jobs" --target mddual >/dev/null
+
+out="${MDDUAL_FULL_BENCH_OUT:-out/bench-full}"
+results=docs/results
+seed=1
+# config: runs per planner and checker, seconds per run.
+declare -A runs=([thin_walls]=20 [convex_field]=100 [narrow_passage]=5 [maze_se2]=100 [cubicles]=100)
+declare -A limit=([thin_walls]=5 [convex_field]=10 [narrow_passage]=15 [maze_se2]=10 [cubicles]=10)
+configs=("$@")
+if [ ${#configs[@]} -eq 0 ]; then configs=(thin_walls convex_field narrow_passage maze_se2 cubicles); fi
+
+mkdir -p "$results"
+declare -A seconds
+declare -A command
+for c in "${configs[@]}"; do
+  if [ -z "${runs[$c]:-}" ]; then
+    echo "run-full-bench: unknown config '$c' (known: ${!runs[*]})" >&2
+    exit 2
+  fi
+  cmd=(./build/release/cli/mddual bench "configs/$c/$c.cfg" --runs "${runs[$c]}" --time-limit "${limit[$c]}"
+       --seed "$seed" --output "$out/$c")
+  command[$c]="${cmd[*]}"
+  echo "== ${command[$c]}" >&2
+  start=$(date +%s)
+  "${cmd[@]}"
+  seconds[$c]=$(($(date +%s) - start))
+  cp "$out/$c/plots/$c.png" "$results/$c.png"
+done
+
+cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
+{
+  echo "# Full benchmark runs"
+  echo
+  echo "Made by \`scripts/run-full-bench.sh\` at commit $(git rev-parse --short HEAD) on $(date -u +%Y-%m-%d)."
+  echo "Machine: $(nproc) cores, $cpu, $(uname -sr); OMPL $(dpkg-query -W -f='${Version}' libompl-dev 2>/dev/null || echo '?'),"
+  echo "FCL $(dpkg-query -W -f='${Version}' libfcl-dev 2>/dev/null || echo '?'). Seed $seed. Every checker gets the same runs and time limit."
+  echo
+  echo "Columns (scripts/bench_report.py): success = runs whose solution the strict verification found"
+  echo "collision-free; median time over all runs, runs without a verified solution counted at the time limit;"
+  echo "time / FCL = that median over the fcl checker's (FCL + OMPL's discrete motion validator at the default"
+  echo "resolution); solved time = median time of the runs that returned an exact solution, valid or not;"
+  echo "checking = median share of the planning time spent in the checkers; invalid = solutions in collision;"
+  echo "invalid raw = of those, already invalid before OMPL's simplification."
+  for c in "${configs[@]}"; do
+    echo
+    echo "## $c"
+    echo
+    echo "\`${command[$c]}\` (${seconds[$c]} s)"
+    echo
+    cat "$out/$c/summary.md"
+    echo
+    echo "![$c]($c.png)"
+  done
+} >"$results/README.md"
+echo "run-full-bench: wrote $results/README.md and the plots" >&2

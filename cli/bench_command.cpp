@@ -98,7 +98,7 @@ std::vector<std::string> splitList(const std::string& flag, const std::string& t
   return out;
 }
 
-std::string clock(double seconds) {
+std::string formatClock(double seconds) {
   const long s = static_cast<long>(seconds);
   char buf[32];
   if (s >= 3600) {
@@ -331,8 +331,8 @@ class Progress {
     const double took = std::chrono::duration<double>(Clock::now() - planner_start_).count();
     if (tty_) std::cerr << "\r\033[K";
     std::cerr << "bench: " << config_ << " | " << checker_ << " | " << planner_ << ": " << done_ << " runs, " << solved_
-              << " solved, " << verified_ << " verified, " << invalid_ << " invalid (" << clock(took) << "; elapsed "
-              << clock(elapsed()) << ")\n"
+              << " solved, " << verified_ << " verified, " << invalid_ << " invalid (" << formatClock(took)
+              << "; elapsed " << formatClock(elapsed()) << ")\n"
               << std::flush;
     planner_.clear();
   }
@@ -341,7 +341,7 @@ class Progress {
     if (!tty_ || stopped_ || planner_.empty()) return;
     std::cerr << "\r\033[K" << config_ << " | checker " << checker_ << " (" << checker_index_ + 1 << "/" << checkers_
               << ") | " << planner_ << " (" << planner_index_ + 1 << "/" << planners_ << ") | run "
-              << std::max(run_ + 1, 1) << " of " << runs_ << " | elapsed " << clock(elapsed()) << std::flush;
+              << std::max(run_ + 1, 1) << " of " << runs_ << " | elapsed " << formatClock(elapsed()) << std::flush;
   }
 
   void tick() {

@@ -59,7 +59,7 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
   echo "time / FCL = that median over the fcl checker's (FCL + OMPL's discrete motion validator at the default"
   echo "resolution); solved time = median time of the runs that returned an exact solution, valid or not;"
   echo "checking = median share of the planning time spent in the checkers; invalid = solutions in collision;"
-  echo "invalid raw = of those, already invalid before OMPL's simplification."
+  echo "invalid raw = solutions whose path was already in collision before OMPL's simplification."
   for c in "${configs[@]}"; do
     echo
     echo "## $c"

@@ -161,7 +161,7 @@ def thin_walls(files):
         [("name", "thin_walls"), ("robot", "robot.urdf"), ("world", "world.urdf")]
         + pose("start", (1.0, 5.0, 5.0)) + pose("goal", (19.0, 5.0, 5.0))
         + volume((0, 0, 0), (20, 10, 10)) + [("translation_only", "true")],
-        [("time_limit", "2.0"), ("mem_limit", "10000.0"), ("run_count", "5")],
+        [("time_limit", "2.0"), ("mem_limit", "10000.0"), ("run_count", "20")],
         PLANNERS,
         """mddual benchmark config (made by scripts/make_configs.py): thin walls.
 Four walls 1 cm thick, each with one door, between start and goal. The walls

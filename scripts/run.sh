@@ -3,11 +3,12 @@
 # OMPL benchmark of configs/thin_walls/thin_walls.cfg with MDD-DUAL's checker
 # (mdd), FCL with OMPL's discrete motion validator (fcl) and FCL's continuous
 # collision (fcl-continuous), every solution verified, with the config's own
-# budgets (about a minute on a 2-core machine, three at most). Writes
+# budgets (20 runs of at most 2 s per planner and checker: about half a
+# minute on a 2-core machine once built, three at most). Writes
 # out/bench/thin_walls/ (logs, bench.db, plots/, summary.md) and prints the
 # summary table at the end.
 #
-# Extra arguments go to `mddual bench`, e.g. ./scripts/run.sh --runs 20, or
+# Extra arguments go to `mddual bench`, e.g. ./scripts/run.sh --runs 50, or
 # another config: ./scripts/run.sh configs/maze_se2/maze_se2.cfg.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -9,6 +9,8 @@
 #include <ompl/base/samplers/MaximizeClearanceValidStateSampler.h>
 #include <ompl/base/samplers/ObstacleBasedValidStateSampler.h>
 #include <ompl/base/samplers/UniformValidStateSampler.h>
+#include <ompl/base/spaces/RealVectorStateProjections.h>
+#include <ompl/tools/config/MagicConstants.h>
 #include <atomic>
 #include <cctype>
 #include <chrono>
@@ -22,6 +24,7 @@ namespace mddual::planning {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
+using ompl::magic::PROJECTION_DIMENSION_SPLITS;
 
 // ---- Timing and counting wrappers ------------------------------------------------
 
@@ -254,6 +257,22 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
   }
   ss_ = std::make_shared<og::SimpleSetup>(space_->stateSpace());
   const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
+  if (kind == SpaceKind::kR3) {
+    // OMPL projects R^n, n > 2, on a random 2-D linear map drawn at each set-up
+    // of the space, so projection-based planners (KPIECE, ...) would depend on
+    // the draw, differently for each checker. Project on the position instead,
+    // as OMPL's SE(3) default does, with OMPL's default cells (extent / 20);
+    // explicit cell sizes keep it through later set-ups.
+    std::vector<double> cells(3);
+    for (int k = 0; k < 3; ++k) {
+      cells[static_cast<std::size_t>(k)] = (sc.bounds.max()[k] - sc.bounds.min()[k]) / PROJECTION_DIMENSION_SPLITS;
+    }
+    // (A linear map: OMPL 1.5.2's RealVectorIdentityProjectionEvaluator maps
+    // getDimension() * sizeof(double) values, which Eigen's assertions reject.)
+    auto projection = std::make_shared<ob::RealVectorLinearProjectionEvaluator>(
+        space_->stateSpace(), cells, ob::ProjectionMatrix::Matrix::Identity(3, 3));
+    space_->stateSpace()->registerDefaultProjection(projection);
+  }
 
   // 2. The checkers, wrapped.
   ob::StateValidityCheckerPtr state_checker;

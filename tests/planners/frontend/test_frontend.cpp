@@ -136,6 +136,16 @@ TEST_F(FrontendSetup, SetsSpaceParametersPlannerParametersAndContexts) {
     setup.applyPlannerContext(problem.config.planners[2]);
     EXPECT_DOUBLE_EQ(space->getLongestValidSegmentFraction(), 0.05);
     EXPECT_NEAR(space->getLongestValidSegmentLength(), 0.05 * extent, 1e-12);
+    // R^3's default projection: the position, cells of 1/20 of the bounds,
+    // kept through the set-ups above (not OMPL's random 2-D map).
+    const ob::ProjectionEvaluatorPtr projection = space->getDefaultProjection();
+    EXPECT_EQ(projection->getDimension(), 3u);
+    EXPECT_EQ(projection->getCellSizes(), (std::vector<double>{0.5, 0.5, 0.5}));
+    ob::ScopedState<> s(space);
+    setup.planningSpace()->setPose(problem.scene->goal, s.get());
+    Eigen::VectorXd p(3);
+    projection->project(s.get(), p);
+    EXPECT_TRUE(p.isApprox(Eigen::Vector3d(8, 5, 5)));
 
     // Start, goal, threshold, objective.
     const ob::ProblemDefinitionPtr& pdef = setup.simpleSetup().getProblemDefinition();

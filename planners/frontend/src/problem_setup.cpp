@@ -257,21 +257,21 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
   }
   ss_ = std::make_shared<og::SimpleSetup>(space_->stateSpace());
   const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
-  if (kind == SpaceKind::kR3) {
-    // OMPL projects R^n, n > 2, on a random 2-D linear map drawn at each set-up
-    // of the space, so projection-based planners (KPIECE, ...) would depend on
-    // the draw, differently for each checker. Project on the position instead,
-    // as OMPL's SE(3) default does, with OMPL's default cells (extent / 20);
-    // explicit cell sizes keep it through later set-ups.
-    std::vector<double> cells(3);
-    for (int k = 0; k < 3; ++k) {
+  if (kind == SpaceKind::kR2 || kind == SpaceKind::kR3) {
+    // The translation-only kinds project on the position, as OMPL's SE(2) and
+    // SE(3) defaults do, with OMPL's default cells (extent / 20); explicit
+    // cell sizes keep the projection through later set-ups. OMPL's own:
+    // R^3 a random 2-D linear map drawn anew at each set-up (projection-based
+    // planners such as KPIECE would depend on the draw, differently for each
+    // checker); R^2 RealVectorIdentityProjectionEvaluator, which in OMPL
+    // 1.5.2 maps dimension * sizeof(double) values (Eigen's assertion fails).
+    const int dims = kind == SpaceKind::kR2 ? 2 : 3;
+    std::vector<double> cells(static_cast<std::size_t>(dims));
+    for (int k = 0; k < dims; ++k) {
       cells[static_cast<std::size_t>(k)] = (sc.bounds.max()[k] - sc.bounds.min()[k]) / PROJECTION_DIMENSION_SPLITS;
     }
-    // (A linear map: OMPL 1.5.2's RealVectorIdentityProjectionEvaluator maps
-    // getDimension() * sizeof(double) values, which Eigen's assertions reject.)
-    auto projection = std::make_shared<ob::RealVectorLinearProjectionEvaluator>(
-        space_->stateSpace(), cells, ob::ProjectionMatrix::Matrix::Identity(3, 3));
-    space_->stateSpace()->registerDefaultProjection(projection);
+    space_->stateSpace()->registerDefaultProjection(std::make_shared<ob::RealVectorLinearProjectionEvaluator>(
+        space_->stateSpace(), cells, ob::ProjectionMatrix::Matrix::Identity(dims, dims)));
   }
 
   // 2. The checkers, wrapped.

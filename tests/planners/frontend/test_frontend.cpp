@@ -210,6 +210,26 @@ TEST_F(FrontendSetup, CountsChecksOnceAndTimesThemOnce) {
   }
 }
 
+// A planar translation-only problem (R^2) with KPIECE, which uses the space's
+// default projection (OMPL 1.5.2's own for R^2 trips an Eigen assertion).
+TEST_F(FrontendSetup, PlanarTranslationOnlyWithKpiece) {
+  testing::writeTinyConfig(dir_.path());  // robot and world
+  testing::writeTextFile(dir_.path() / "planar.cfg",
+                         "[problem]\nrobot = robot.urdf\nworld = world.urdf\nstart.x = 2\nstart.y = 5\n"
+                         "start.theta = 0\ngoal.x = 8\ngoal.y = 5\ngoal.theta = 0\nvolume.min.x = 0\n"
+                         "volume.min.y = 0\nvolume.max.x = 10\nvolume.max.y = 10\ntranslation_only = true\n"
+                         "[planner]\nkpiece =\n");
+  const Problem problem = loadProblem(dir_.path() / "planar.cfg");
+  EXPECT_EQ(problem.name, "planar");
+  for (CheckerKind kind : allCheckerKinds()) {
+    ProblemSetup setup(problem, kind);
+    EXPECT_EQ(setup.planningSpace()->kind(), SpaceKind::kR2);
+    EXPECT_EQ(setup.spaceInformation()->getStateSpace()->getDefaultProjection()->getDimension(), 2u);
+    setup.simpleSetup().setPlanner(setup.makePlanner(problem.config.planners[0]));
+    EXPECT_TRUE(setup.simpleSetup().solve(5.0)) << toString(kind);
+  }
+}
+
 // A convex robot against a world mesh (triangles): FCL 0.7's conservative
 // advancement between a shape and a mesh crashes or misses contacts; the FCL
 // baseline checks such pairs as two meshes (planners/ompl/src/fcl_scene.cpp).

@@ -13,10 +13,11 @@
 //   1. the state space: PlanningSpace of the cfg's kind (SE(2), SE(3), R^2,
 //      R^3) with the scene's position bounds (planar kinds: x and y only);
 //      the translation-only kinds keep the start's orientation (and z = 0 for
-//      R^2); R^3's default projection is the position with OMPL's default
-//      cells (OMPL's own is a random 2-D linear map, drawn anew at each
-//      set-up: projection-based planners such as KPIECE would depend on it,
-//      differently for each checker);
+//      R^2); their default projection is the position with OMPL's default
+//      cells (OMPL's own for R^3 is a random 2-D linear map drawn anew at
+//      each set-up: projection-based planners such as KPIECE would depend on
+//      it, differently for each checker; for R^2 it trips an Eigen assertion
+//      in OMPL 1.5.2);
 //   2. the checkers (CheckerKind):
 //        mdd             MddStateValidityChecker + MddMotionValidator (exact
 //                        translation edges, sound rotating edges);

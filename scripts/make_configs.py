@@ -203,13 +203,13 @@ cube; a box robot crosses it diagonally. Translation only.""")
 
 
 def narrow_passage(files):
-    """A 0.5 m thick wall with a 0.4 x 3 m slot; a 0.3 x 2 x 0.3 m bar held
+    """A 0.5 m thick wall with a 0.6 x 3 m slot; a 0.3 x 2 x 0.3 m bar held
     across the slot at start and goal must turn upright to pass it."""
     w = []
     t, half = 0.5, 5.0
-    slot_y, slot_z = 0.2, 1.5
-    w.append(box((0, -(half + slot_y) / 2, 0), (t, half - slot_y, 2 * half)))   # y < -0.2
-    w.append(box((0, (half + slot_y) / 2, 0), (t, half - slot_y, 2 * half)))    # y > 0.2
+    slot_y, slot_z = 0.3, 1.5
+    w.append(box((0, -(half + slot_y) / 2, 0), (t, half - slot_y, 2 * half)))   # y < -slot_y
+    w.append(box((0, (half + slot_y) / 2, 0), (t, half - slot_y, 2 * half)))    # y > slot_y
     w.append(box((0, 0, -(half + slot_z) / 2), (t, 2 * slot_y, half - slot_z)))  # below the slot
     w.append(box((0, 0, (half + slot_z) / 2), (t, 2 * slot_y, half - slot_z)))   # above
     files["narrow_passage/world.urdf"] = urdf("narrow_passage", w)
@@ -221,7 +221,7 @@ def narrow_passage(files):
         [("time_limit", "10.0"), ("mem_limit", "10000.0"), ("run_count", "20")],
         PLANNERS,
         """mddual benchmark config (made by scripts/make_configs.py): a narrow
-passage. A bar (0.3 x 2 x 0.3 m) lies across a 0.4 m wide, 3 m tall slot in a
+passage. A bar (0.3 x 2 x 0.3 m) lies across a 0.6 m wide, 3 m tall slot in a
 wall; it must turn upright to pass. SE(3).""")
 
 

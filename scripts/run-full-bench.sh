@@ -23,8 +23,8 @@ out="${MDDUAL_FULL_BENCH_OUT:-out/bench-full}"
 results=docs/results
 seed=1
 # config: runs per planner and checker, seconds per run.
-declare -A runs=([thin_walls]=100 [convex_field]=100 [narrow_passage]=5 [maze_se2]=100 [cubicles]=100)
-declare -A limit=([thin_walls]=5 [convex_field]=10 [narrow_passage]=15 [maze_se2]=10 [cubicles]=10)
+declare -A runs=([thin_walls]=100 [convex_field]=100 [narrow_passage]=20 [maze_se2]=100 [cubicles]=100)
+declare -A limit=([thin_walls]=5 [convex_field]=10 [narrow_passage]=10 [maze_se2]=10 [cubicles]=10)
 configs=("$@")
 if [ ${#configs[@]} -eq 0 ]; then configs=(thin_walls convex_field narrow_passage maze_se2 cubicles); fi
 

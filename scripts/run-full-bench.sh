@@ -6,9 +6,10 @@
 # mddual (Release, build/release), runs `mddual bench` per config into
 # out/bench-full/<config>/, then writes docs/results/: one plot per config
 # (<config>.png) and README.md with the machine, the commands, each config's
-# wall time and its summary table.
+# wall time and its summary table; and the results table of README.md
+# (scripts/results_overview.py, from every config's database under the output).
 #
-#   scripts/run-full-bench.sh                  all five configs (about 35 minutes)
+#   scripts/run-full-bench.sh                  all five configs (about 25 minutes)
 #   scripts/run-full-bench.sh thin_walls maze_se2   some of them (docs/results/README.md
 #                                              then lists only those)
 # MDDUAL_FULL_BENCH_OUT changes out/bench-full; MDDUAL_JOBS the build's parallelism.
@@ -71,4 +72,5 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
     echo "![$c]($c.png)"
   done
 } >"$results/README.md"
-echo "run-full-bench: wrote $results/README.md and the plots" >&2
+python3 scripts/results_overview.py --bench "$out" --readme README.md
+echo "run-full-bench: wrote $results/README.md, the plots and README.md's results table" >&2

@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""The README's benchmark overview, from the full runs' databases.
+
+Reads out/bench-full/<config>/bench.db (made by scripts/run-full-bench.sh via
+`mddual bench`), summarises them with scripts/bench_report.py, and writes one
+compact table (per config and planner: success, median time and invalid
+solutions of each checker, MDD's time over FCL discrete's, and the MDD and
+FCL checkers' median time over the runs that returned a solution, valid or not), the issue's
+targets with their verdicts as measured, and how often the two halves of the
+strict verification agreed. The text replaces what lies between the markers
+`<!-- results:begin -->` and `<!-- results:end -->` in README.md (--readme), or
+goes to standard output.
+
+    scripts/results_overview.py [--bench DIR] [--readme README.md]
+"""
+
+import argparse
+import os
+import sqlite3
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_report  # noqa: E402
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+CONFIGS = ["thin_walls", "convex_field", "narrow_passage", "maze_se2", "cubicles"]
+CHECKERS = ["mdd", "fcl", "fcl-continuous"]
+BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+
+
+def translation_only(config):
+    path = os.path.join(ROOT, "configs", config, config + ".cfg")
+    with open(path) as f:
+        return any(line.replace(" ", "").strip().lower() == "translation_only=true" for line in f)
+
+
+def agreement(db_path):
+    """(flagged by both checks, by the MDD check only, by the FCL check only) over invalid solutions."""
+    db = sqlite3.connect(db_path)
+    cols = bench_report.columns(db, "runs")
+    if not {"invalid_by_mdd", "invalid_by_fcl"} <= cols:
+        return (0, 0, 0)
+    row = db.execute("select sum(invalid_by_mdd = 1 and invalid_by_fcl = 1), sum(invalid_by_mdd = 1 and "
+                     "coalesce(invalid_by_fcl, 0) = 0), sum(coalesce(invalid_by_mdd, 0) = 0 and invalid_by_fcl = 1) "
+                     "from runs").fetchone()
+    return tuple(int(x or 0) for x in row)
+
+
+def triple(stats, config, planner, fn):
+    return " / ".join(fn(stats[(config, planner, c)]) if (config, planner, c) in stats else "-" for c in CHECKERS)
+
+
+def overview(bench_dir):
+    stats, runs_limit, agree = {}, {}, [0, 0, 0]
+    configs = [c for c in CONFIGS if os.path.exists(os.path.join(bench_dir, c, "bench.db"))]
+    if not configs:
+        raise SystemExit("results_overview: no %s/<config>/bench.db (run scripts/run-full-bench.sh)" % bench_dir)
+    for c in configs:
+        db = os.path.join(bench_dir, c, "bench.db")
+        rows = bench_report.load(db)
+        stats.update(bench_report.summarise(rows))
+        per_group = {}
+        for r in rows:
+            per_group[(r["planner"], r["checker"])] = per_group.get((r["planner"], r["checker"]), 0) + 1
+        runs_limit[c] = (max(per_group.values()), rows[0]["timelimit"])
+        agree = [a + b for a, b in zip(agree, agreement(db))]
+
+    lines = ["| config (runs x limit) | planner | success mdd / fcl / fcl-cont | median time (s) mdd / fcl / fcl-cont "
+             "| mdd / FCL | solved time (s) mdd / fcl | invalid mdd / fcl / fcl-cont |", "|---|---|---|---|---|---|---|"]
+    verdicts, mdd_invalid, thin_fcl_invalid = [], 0, 0
+    for c in configs:
+        planners = sorted({k[1] for k in stats if k[0] == c})
+        for p in planners:
+            mdd, fcl = stats.get((c, p, "mdd")), stats.get((c, p, "fcl"))
+            space = " (translation)" if translation_only(c) else ""
+            lines.append("| %s%s, %d x %gs | %s | %s | %s | %s | %s | %s |" % (
+                c, space, runs_limit[c][0], runs_limit[c][1], p,
+                triple(stats, c, p, lambda s: "%.0f%%" % (100 * s["success"])),
+                triple(stats, c, p, lambda s: bench_report.fmt(s["median_time"])),
+                bench_report.fmt(mdd["ratio"], 2) if mdd else "-",
+                " / ".join(bench_report.fmt(x["solved_time"]) if x else "-" for x in (mdd, fcl)),
+                triple(stats, c, p, lambda s: str(s["invalid"]))))
+            if mdd:
+                mdd_invalid += mdd["invalid"]
+            if c == "thin_walls" and fcl:
+                thin_fcl_invalid += fcl["invalid"]
+            if translation_only(c) and mdd and fcl:
+                met = mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
+                verdicts.append("%s %s: MDD median %s s vs FCL %s s (ratio %s), success %.0f%% vs %.0f%%: %s" % (
+                    c, p, bench_report.fmt(mdd["median_time"]), bench_report.fmt(fcl["median_time"]),
+                    bench_report.fmt(mdd["ratio"], 2), 100 * mdd["success"], 100 * fcl["success"],
+                    "met" if met else "missed"))
+    text = ["Made by `scripts/results_overview.py --readme README.md` from the databases of "
+            "`scripts/run-full-bench.sh` (per-config tables, commands and plots: "
+            "[docs/results/README.md](docs/results/README.md)).", ""]
+    text += lines + [""]
+    text.append("Targets as measured:")
+    text.append("")
+    text.append("- translation-only configs, MDD's median time at most half of FCL discrete's at the same or "
+                "better success:")
+    text += ["  - " + v for v in verdicts]
+    text.append("- zero invalid solutions from the MDD checker on every config: %d invalid (%s)"
+                % (mdd_invalid, "met" if mdd_invalid == 0 else "missed"))
+    text.append("- thin_walls shows FCL discrete returning invalid solutions: %d invalid (%s)"
+                % (thin_fcl_invalid, "met" if thin_fcl_invalid > 0 else "missed"))
+    text.append("- the two halves of the verification: of the invalid solutions (all checkers), %d were found by "
+                "both the exact MDD edge check and the dense FCL check, %d by the MDD check only, %d by the FCL "
+                "check only" % tuple(agree))
+    return "\n".join(text) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-full"))
+    parser.add_argument("--readme", help="replace the text between the results markers in this file")
+    args = parser.parse_args()
+    text = overview(args.bench)
+    if not args.readme:
+        sys.stdout.write(text)
+        return
+    with open(args.readme) as f:
+        readme = f.read()
+    if BEGIN not in readme or END not in readme:
+        raise SystemExit("results_overview: %s has no %s ... %s markers" % (args.readme, BEGIN, END))
+    head, rest = readme.split(BEGIN, 1)
+    _, tail = rest.split(END, 1)
+    with open(args.readme, "w") as f:
+        f.write(head + BEGIN + "\n" + text + END + tail)
+
+
+if __name__ == "__main__":
+    main()

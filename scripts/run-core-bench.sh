@@ -26,7 +26,7 @@ out="${MDDUAL_BENCH_OUT:-$root/out}"
 mkdir -p "$out"
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMDDUAL_BUILD_BENCHMARKS=ON \
-  -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_CLI=OFF >/dev/null
+  -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=OFF >/dev/null
 cmake --build "$build" -j2 --target mddual_bench_core
 
 label="$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"

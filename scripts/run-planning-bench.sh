@@ -3,13 +3,18 @@
 # motion check, MDD-DUAL against FCL (OMPL's discrete validator at the default
 # resolution, and FCL's continuous collision), with pair queries per check.
 # Builds Release in build-bench/ and writes out/bench-planning.md (about a
-# minute on the 2-core development machine, plus the build).
+# minute on the 2-core development machine, plus the build); without arguments
+# it also rewrites the planning table of README.md (scripts/planning_table.py).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${MDDUAL_BENCH_BUILD_DIR:-$root/build-bench}"
 out="${MDDUAL_BENCH_OUT:-$root/out}"
 mkdir -p "$out"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMDDUAL_BUILD_BENCHMARKS=ON -DMDDUAL_BUILD_TESTS=OFF \
-  -DMDDUAL_BUILD_CLI=OFF >/dev/null
+  -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=ON >/dev/null
 cmake --build "$build" -j2 --target mddual_bench_planning
 "$build/benchmarks/planning/mddual_bench_planning" "$@" | tee "$out/bench-planning.md"
+# The README's table, from a run with the default sizes only.
+if [ $# -eq 0 ]; then
+  python3 "$root/scripts/planning_table.py" --input "$out/bench-planning.md" --readme "$root/README.md"
+fi

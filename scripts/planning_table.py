@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""README's planning-layer speed table, from the output of mddual_bench_planning.
+
+Reads the Markdown that scripts/run-planning-bench.sh writes (out/bench-planning.md
+by default): per scene, the state-check line and the edge table. Writes one row per
+scene and edge kind (state checks, MDD and OMPL's discrete + FCL time per edge and
+their ratio, the ratio on valid and on invalid edges alone, FCL's continuous
+validator with conservative advancement and how often its answer differs from
+MDD's, and MDD's pair queries per edge) between the markers
+`<!-- planning:begin -->` and `<!-- planning:end -->` of README.md (--readme), or
+to standard output.
+
+    scripts/planning_table.py [--input out/bench-planning.md] [--readme README.md]
+"""
+
+import argparse
+import os
+import re
+import sys
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+BEGIN, END = "<!-- planning:begin -->", "<!-- planning:end -->"
+
+
+def parse(text):
+    header = re.search(r"seed (\d+), (\d+) states, (\d+) edges per kind, fastest of (\d+) passes", text)
+    if not header:
+        raise SystemExit("planning_table: no benchmark header in the input (not mddual_bench_planning output?)")
+    scenes = []
+    for block in re.split(r"^### ", text, flags=re.M)[1:]:
+        name = block.split(":", 1)[0].strip()
+        state = re.search(r"MDD ([\d.]+) us .*?FCL ([\d.]+) us .*?FCL / MDD = ([\d.]+)x", block)
+        if not state:
+            raise SystemExit("planning_table: scene '%s' has no state-check line" % name)
+        rows = []
+        for line in block.splitlines():
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if len(cells) != 13 or not re.match(r"(translation|rotating),", cells[0]):
+                continue
+            rows.append(cells)
+        scenes.append((name, state.groups(), rows))
+    return header.groups(), scenes
+
+
+def table(parsed):
+    (seed, states, edges, passes), scenes = parsed
+    out = ["Made by `scripts/planning_table.py --readme README.md` from `./scripts/run-planning-bench.sh` "
+           "(seed %s, %s random states and %s random edges per kind and scene, fastest of %s passes)." %
+           (seed, states, edges, passes), "",
+           "| scene | state check MDD / FCL (us) | FCL / MDD | edges | MDD (us) | OMPL discrete + FCL (us) | "
+           "discrete / MDD: all | valid only / invalid only | FCL CCD CA (us) | CA answers != MDD | pair queries |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, (t_mdd, t_fcl, ratio), rows in scenes:
+        for r in rows:
+            out.append("| %s | %s / %s | %sx | %s | %s | %s | %s | %s | %s | %s of %s | %s |" % (
+                name, t_mdd, t_fcl, ratio, r[0], r[2], r[5], r[7], r[8], r[11], r[12], edges, r[3]))
+    return "\n".join(out) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--input", default=os.path.join(ROOT, "out", "bench-planning.md"))
+    parser.add_argument("--readme", help="replace the text between the planning markers in this file")
+    args = parser.parse_args()
+    with open(args.input) as f:
+        text = table(parse(f.read()))
+    if not args.readme:
+        sys.stdout.write(text)
+        return
+    with open(args.readme) as f:
+        readme = f.read()
+    if BEGIN not in readme or END not in readme:
+        raise SystemExit("planning_table: %s has no %s ... %s markers" % (args.readme, BEGIN, END))
+    head, rest = readme.split(BEGIN, 1)
+    _, tail = rest.split(END, 1)
+    with open(args.readme, "w") as f:
+        f.write(head + BEGIN + "\n" + text + END + tail)
+
+
+if __name__ == "__main__":
+    main()

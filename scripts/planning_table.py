@@ -18,6 +18,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import readme_markers  # noqa: E402
+
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 BEGIN, END = "<!-- planning:begin -->", "<!-- planning:end -->"
 
@@ -67,14 +70,7 @@ def main():
     if not args.readme:
         sys.stdout.write(text)
         return
-    with open(args.readme) as f:
-        readme = f.read()
-    if BEGIN not in readme or END not in readme:
-        raise SystemExit("planning_table: %s has no %s ... %s markers" % (args.readme, BEGIN, END))
-    head, rest = readme.split(BEGIN, 1)
-    _, tail = rest.split(END, 1)
-    with open(args.readme, "w") as f:
-        f.write(head + BEGIN + "\n" + text + END + tail)
+    readme_markers.replace_between(args.readme, BEGIN, END, text, "planning_table")
 
 
 if __name__ == "__main__":

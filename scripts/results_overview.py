@@ -21,6 +21,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_report  # noqa: E402
+import readme_markers  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 CONFIGS = ["thin_walls", "convex_field", "narrow_passage", "maze_se2", "cubicles"]
@@ -118,14 +119,7 @@ def main():
     if not args.readme:
         sys.stdout.write(text)
         return
-    with open(args.readme) as f:
-        readme = f.read()
-    if BEGIN not in readme or END not in readme:
-        raise SystemExit("results_overview: %s has no %s ... %s markers" % (args.readme, BEGIN, END))
-    head, rest = readme.split(BEGIN, 1)
-    _, tail = rest.split(END, 1)
-    with open(args.readme, "w") as f:
-        f.write(head + BEGIN + "\n" + text + END + tail)
+    readme_markers.replace_between(args.readme, BEGIN, END, text, "results_overview")
 
 
 if __name__ == "__main__":

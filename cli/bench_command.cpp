@@ -378,6 +378,11 @@ class Progress {
 
 void runBenchReport(const std::string& dir) {
   const std::vector<fs::path> logs = logsIn(dir);
+  try {
+    mp::checkShardSets(logs);
+  } catch (const InvalidInputError& e) {
+    throw FatalError("bench-report: " + dir + ": " + e.what());
+  }
   const ReportTools tools = findReportTools();
   std::cerr << "bench-report: " << logs.size() << " logs in " << dir << "\n";
   buildReport(tools, dir, logs);
@@ -406,11 +411,10 @@ void runBenchCommand(const BenchFlags& f) {
   if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
   if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
   const long seed = parsePositiveInt("--seed", f.seed);
-  if (seed + options.shard.index > 4000000000L) throw FatalError("--seed: too large");
 
-  // OMPL's random seed before anything creates a generator: shard I uses seed + I.
+  // OMPL's random seed before anything creates a generator (a shard's own, see shardSeed).
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  ompl::RNG::setSeed(static_cast<std::uint_fast32_t>(seed + options.shard.index));
+  ompl::RNG::setSeed(mp::shardSeed(seed, options.shard));
 
   mp::Problem problem;
   try {

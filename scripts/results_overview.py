@@ -43,7 +43,7 @@ def agreement(db_path):
         return (0, 0, 0)
     row = db.execute("select sum(invalid_by_mdd = 1 and invalid_by_fcl = 1), sum(invalid_by_mdd = 1 and "
                      "coalesce(invalid_by_fcl, 0) = 0), sum(coalesce(invalid_by_mdd, 0) = 0 and invalid_by_fcl = 1) "
-                     "from runs").fetchone()
+                     "from runs where invalid_solution = 1").fetchone()
     return tuple(int(x or 0) for x in row)
 
 

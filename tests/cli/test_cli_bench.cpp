@@ -163,8 +163,19 @@ TEST(CliBench, ShardsMergeToTheUnshardedRuns) {
        {"tiny-mdd.shard0of2.log", "tiny-mdd.shard1of2.log", "tiny-fcl.shard0of2.log", "tiny-fcl.shard1of2.log"}) {
     EXPECT_TRUE(fs::is_regular_file(shards / f)) << f;
   }
-  // Shard seeds: 7 + I, in the logs.
-  EXPECT_NE(readFile((shards / "tiny-mdd.shard1of2.log").string()).find("\n8 is the random seed"), std::string::npos);
+  // Each shard has a seed of its own (a hash of 7, I, N; exact values in test_bench_runner), in its log.
+  auto seedOf = [&](const char* log) {
+    const std::string text = readFile((shards / log).string());
+    const std::size_t at = text.find(" is the random seed");
+    const std::size_t start = text.rfind('\n', at);
+    return at == std::string::npos || start == std::string::npos ? "" : text.substr(start + 1, at - start - 1);
+  };
+  const std::string seed0 = seedOf("tiny-mdd.shard0of2.log");
+  const std::string seed1 = seedOf("tiny-mdd.shard1of2.log");
+  EXPECT_FALSE(seed0.empty());
+  EXPECT_NE(seed0, seed1);
+  EXPECT_NE(seed0, "7");
+  EXPECT_EQ(seed0, seedOf("tiny-fcl.shard0of2.log")) << "one seed per shard, every checker";
 
   const CliRun report = runCli({"bench-report", shards.string()});
   ASSERT_EQ(report.exit_code, 0) << report.err;
@@ -208,6 +219,7 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
       {{cfg, "--runs", "0"}, "--runs: '0' is not a positive integer"},
       {{cfg, "--runs", "two"}, "--runs: 'two' is not a positive integer"},
       {{cfg, "--time-limit=-1"}, "--time-limit: '-1' is not a positive number"},
+      {{cfg, "--time-limit", "1e18", "--output", out}, "the time limit must be a positive number of seconds, at most"},
       {{cfg, "--seed", "0"}, "--seed: '0' is not a positive integer"},
       {{cfg, "--planners", "prm"}, "planner 'prm' is not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},
       {{cfg, "--shard", "2/3", "--output", out}, "--shard 2/3: only 2 runs per planner, so at most 2 shards"},
@@ -227,6 +239,17 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
     EXPECT_TRUE(r.out.empty()) << shown << r.out;
   }
   EXPECT_FALSE(fs::exists(base / "out" / "tiny-mdd.log"));
+
+  // bench-report on logs that do not form complete shard sets: nothing is built.
+  TempDir mixed;
+  for (const char* f : {"tiny-mdd.log", "tiny-mdd.shard0of2.log", "tiny-fcl.shard1of2.log"}) {
+    std::ofstream(fs::path(mixed.path()) / f) << "\n";
+  }
+  const CliRun bad_set = runCli({"bench-report", mixed.path()});
+  EXPECT_EQ(bad_set.exit_code, 2);
+  EXPECT_EQ(countLines(bad_set.err), 1) << bad_set.err;
+  EXPECT_NE(bad_set.err.find("tiny-fcl: shard logs missing: 0/2"), std::string::npos) << bad_set.err;
+  EXPECT_FALSE(fs::exists(fs::path(mixed.path()) / "bench.db"));
 
   // bench-report on a folder without logs, or no folder.
   const CliRun empty = runCli({"bench-report", dir.path()});

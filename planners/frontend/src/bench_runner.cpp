@@ -10,6 +10,8 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <system_error>
 
@@ -120,6 +122,60 @@ std::vector<int> shardRuns(int runs, const BenchShard& shard) {
   return out;
 }
 
+std::uint32_t shardSeed(long seed, const BenchShard& shard) {
+  if (!shard.sharded()) return static_cast<std::uint32_t>(seed);
+  // splitmix64 (Steele, Lea, Flood 2014) over the three numbers in turn.
+  const auto mix = [](std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  std::uint64_t h = mix(static_cast<std::uint64_t>(seed));
+  h = mix(h ^ static_cast<std::uint64_t>(shard.index));
+  h = mix(h ^ (static_cast<std::uint64_t>(shard.count) << 32));
+  return static_cast<std::uint32_t>(1 + h % 0xfffffffeULL);
+}
+
+void checkShardSets(const std::vector<std::filesystem::path>& logs) {
+  // Per "<config>-<checker>": unsharded logs, and shard index sets per N.
+  struct Group {
+    int unsharded = 0;
+    std::map<int, std::set<int>> shards;
+  };
+  std::map<std::string, Group> groups;
+  const std::regex sharded(R"((.*)\.shard(\d+)of(\d+)\.log)");
+  for (const auto& path : logs) {
+    const std::string name = path.filename().string();
+    std::smatch m;
+    if (std::regex_match(name, m, sharded)) {
+      groups[m[1]].shards[std::stoi(m[3])].insert(std::stoi(m[2]));
+    } else {
+      ++groups[path.stem().string()].unsharded;
+    }
+  }
+  for (const auto& [stem, g] : groups) {
+    if (g.unsharded > 0 && !g.shards.empty()) {
+      throw InvalidInputError(stem +
+                              ": both an unsharded log and shard logs in the same folder (their runs would "
+                              "be counted twice); keep one kind");
+    }
+    if (g.shards.size() > 1) {
+      std::string counts;
+      for (const auto& [n, ignored] : g.shards) counts += (counts.empty() ? "" : ", ") + std::to_string(n);
+      throw InvalidInputError(stem + ": shard logs of different shard counts (" + counts +
+                              ") in the same folder; keep those of one count");
+    }
+    if (g.shards.empty()) continue;
+    const auto& [n, have] = *g.shards.begin();
+    std::string missing;
+    for (int i = 0; i < n; ++i) {
+      if (have.count(i) == 0) missing += (missing.empty() ? "" : ", ") + std::to_string(i) + "/" + std::to_string(n);
+    }
+    if (!missing.empty()) throw InvalidInputError(stem + ": shard logs missing: " + missing);
+  }
+}
+
 std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard) {
   std::string name = config + "-" + toString(checker);
   if (shard.sharded()) name += ".shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
@@ -157,11 +213,15 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
                             " (as many runs as fit in the time limit) is not supported: give the number of runs");
   }
   const double time_limit = options.time_limit.value_or(cfg.time_limit);
-  if (!(time_limit > 0.0) || !std::isfinite(time_limit)) {
-    throw InvalidInputError("the time limit must be a positive number of seconds (got " + real(time_limit) + ")");
+  if (!(time_limit > 0.0) || !(time_limit <= kMaxTimeLimit)) {
+    throw InvalidInputError("the time limit must be a positive number of seconds, at most " + real(kMaxTimeLimit) +
+                            " (got " + real(time_limit) + ")");
   }
   const double mem_limit = options.mem_limit.value_or(cfg.mem_limit);
-  if (!(mem_limit > 0.0)) throw InvalidInputError("the memory limit must be positive (got " + real(mem_limit) + ")");
+  if (!(mem_limit > 0.0) || !(mem_limit <= kMaxMemLimit)) {
+    throw InvalidInputError("the memory limit must be a positive number of MB, at most " + real(kMaxMemLimit) +
+                            " (got " + real(mem_limit) + ")");
+  }
   const BenchShard shard = options.shard;
   if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
     throw InvalidInputError("shard " + toString(shard) + ": expected 0 <= I < N");
@@ -263,6 +323,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       bool invalid_mdd = false;
       bool invalid_fcl = false;
       bool invalid_raw = false;
+      bool out_of_bounds = false;
       double verify_seconds = 0.0;
       std::string error;
       try {
@@ -295,6 +356,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
             invalid = !v.valid;
             invalid_mdd = v.mdd_collision;
             invalid_fcl = v.fcl_collision;
+            out_of_bounds = v.out_of_bounds;
             invalid_raw = invalid;
             if (cfg.simplify) {
               const VerifyResult vr = verifier.verify(*setup.planningSpace(), raw);
@@ -319,9 +381,9 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       } catch (...) {
         error = "unknown exception";
       }
-      if (!error.empty()) {
+      if (!error.empty()) {  // neither verified nor invalid, and no half of the check counted
         verified = false;
-        invalid = false;
+        invalid = invalid_mdd = invalid_fcl = out_of_bounds = invalid_raw = false;
         for (char& c : error) {
           if (c == '\n' || c == ';') c = ' ';
         }
@@ -331,6 +393,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       run["invalid solution BOOLEAN"] = flag(invalid);
       run["invalid by mdd BOOLEAN"] = flag(exact && invalid_mdd);
       run["invalid by fcl BOOLEAN"] = flag(exact && invalid_fcl);
+      run["invalid by bounds BOOLEAN"] = flag(exact && out_of_bounds);
       if (cfg.simplify) run["invalid raw solution BOOLEAN"] = flag(exact && invalid_raw);
       run["verification time REAL"] = real(verify_seconds);
       log.solved += exact ? 1 : 0;

@@ -207,6 +207,46 @@ TEST_F(BenchRunner, ShardsPartitionTheRuns) {
   EXPECT_TRUE(fs::exists(dir_ / "shards" / "tiny-fcl.shard1of2.log"));
 }
 
+TEST(BenchShards, SeedsAreTheCampaignsOwnWhenUnshardedAndDistinctPerShard) {
+  EXPECT_EQ(shardSeed(7, BenchShard{}), 7u);
+  std::set<std::uint32_t> seen;
+  for (long seed : {1L, 2L, 3L, 1000000000L}) {
+    for (int n : {2, 3, 10}) {
+      for (int i = 0; i < n; ++i) {
+        const std::uint32_t s = shardSeed(seed, BenchShard{i, n});
+        EXPECT_GE(s, 1u);
+        EXPECT_TRUE(seen.insert(s).second) << "seed " << seed << " shard " << i << "/" << n << " repeats " << s;
+      }
+    }
+  }
+  // seed + I would make "--seed 1 --shard 1/2" and "--seed 2 --shard 0/2" the same stream.
+  EXPECT_NE(shardSeed(1, BenchShard{1, 2}), shardSeed(2, BenchShard{0, 2}));
+  EXPECT_EQ(shardSeed(5, BenchShard{1, 4}), shardSeed(5, BenchShard{1, 4}));
+}
+
+TEST(BenchShards, ReportNeedsCompleteShardSets) {
+  auto error = [](const std::vector<fs::path>& logs) -> std::string {
+    try {
+      checkShardSets(logs);
+    } catch (const InvalidInputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error({"d/tiny-mdd.log", "d/tiny-fcl.log"}), "");
+  EXPECT_EQ(error({"d/tiny-mdd.shard0of2.log", "d/tiny-mdd.shard1of2.log", "d/tiny-fcl.log"}), "");
+  EXPECT_EQ(error({"d/other.log"}), "");
+  EXPECT_NE(error({"d/tiny-mdd.log", "d/tiny-mdd.shard0of2.log", "d/tiny-mdd.shard1of2.log"})
+                .find("tiny-mdd: both an unsharded log and shard logs"),
+            std::string::npos);
+  EXPECT_NE(error({"d/tiny-mdd.shard0of2.log", "d/tiny-mdd.shard1of2.log", "d/tiny-mdd.shard0of3.log",
+                   "d/tiny-mdd.shard1of3.log", "d/tiny-mdd.shard2of3.log"})
+                .find("tiny-mdd: shard logs of different shard counts (2, 3)"),
+            std::string::npos);
+  EXPECT_NE(error({"d/tiny-fcl.shard0of3.log", "d/tiny-fcl.shard2of3.log"}).find("tiny-fcl: shard logs missing: 1/3"),
+            std::string::npos);
+}
+
 TEST_F(BenchRunner, OptionErrors) {
   auto expectError = [&](const std::function<void(BenchOptions&)>& edit, const std::string& needle) {
     BenchOptions options;
@@ -221,6 +261,9 @@ TEST_F(BenchRunner, OptionErrors) {
   };
   expectError([](BenchOptions& o) { o.runs = 0; }, "--runs must be at least 1");
   expectError([](BenchOptions& o) { o.time_limit = 0.0; }, "time limit must be a positive");
+  // Limits OMPL would overflow (the deadline, the byte count): every run would end at once, unsolved.
+  expectError([](BenchOptions& o) { o.time_limit = 1e18; }, "time limit must be a positive number of seconds, at most");
+  expectError([](BenchOptions& o) { o.mem_limit = 1e300; }, "memory limit must be a positive number of MB, at most");
   expectError([](BenchOptions& o) { o.checkers.clear(); }, "no checker");
   expectError([](BenchOptions& o) { o.shard = BenchShard{2, 3}; }, "only 2 runs per planner, so at most 2 shards");
   expectError([](BenchOptions& o) { o.planners = {"rrt"}; }, "planner 'rrt' is not in tiny.cfg");

@@ -21,8 +21,9 @@
 //                              before OMPL checks the solution path)
 //   verified BOOLEAN           an exact solution that PathVerifier found valid
 //   invalid solution BOOLEAN   an exact solution that it found in collision
-//   invalid by mdd BOOLEAN, invalid by fcl BOOLEAN
-//                              which of its checks did (exact solutions)
+//   invalid by mdd BOOLEAN, invalid by fcl BOOLEAN, invalid by bounds BOOLEAN
+//                              which of its checks did (exact solutions; all 0
+//                              when the verification failed with an error)
 //   invalid raw solution BOOLEAN  the path before simplification was invalid
 //   verification time REAL     seconds spent verifying (both paths)
 //   verification error STRING  what went wrong if the verifier threw (the run
@@ -34,10 +35,16 @@
 // the one the run returns (simplified when simplification is on).
 //
 // Sharding: run r of every (checker, planner) belongs to shard r mod N; shard
-// I of N runs those r in increasing order. The caller seeds OMPL's RNG
-// (seed + I) before building anything, so a shard is reproducible.
+// I of N runs those r in increasing order. The caller seeds OMPL's RNG with
+// shardSeed(seed, shard) before building anything, so a shard is
+// reproducible. The N shards together hold the same run indices as one
+// unsharded run, each exactly once, but not bit-identical runs: OMPL draws a
+// process's random streams one after another, so run r of a shard does not
+// see the stream run r of an unsharded process sees (the results are
+// statistically equivalent samples).
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -48,6 +55,14 @@
 #include "mddual/planning/problem_setup.h"
 
 namespace mddual::planning {
+
+/// Largest time limit accepted, seconds (about 115 days): OMPL adds the limit
+/// to the current time, which overflows for limits near 1e18 s and then ends
+/// every run at once.
+inline constexpr double kMaxTimeLimit = 1e7;
+/// Largest memory limit accepted, MB (1 PB): OMPL converts it to bytes in a
+/// 64-bit integer, which overflows for limits near 1.8e13 MB.
+inline constexpr double kMaxMemLimit = 1e9;
 
 /// Slice I of N of the runs.
 struct BenchShard {
@@ -62,6 +77,17 @@ BenchShard parseShard(const std::string& text);
 std::string toString(const BenchShard& shard);
 /// The run indices r in [0, runs) of shard `shard` (r mod N == I), increasing.
 std::vector<int> shardRuns(int runs, const BenchShard& shard);
+/// OMPL's random seed for `shard` of a campaign seeded with `seed` (>= 1):
+/// `seed` itself when unsharded, else a hash (splitmix64) of (seed, I, N) in
+/// [1, 2^32 - 1], so the shards of one campaign and of campaigns with other
+/// seeds or shard counts do not share seeds the way seed + I would.
+std::uint32_t shardSeed(long seed, const BenchShard& shard);
+/// Checks that the benchmark logs in `logs` (file names as logFileName makes
+/// them) form complete shard sets: per "<config>-<checker>", either one
+/// unsharded log or the logs of shards 0 .. N-1 of a single N, each once.
+/// Other *.log names count as unsharded logs of their own. Throws
+/// InvalidInputError naming the config-checker and the shards missing or mixed.
+void checkShardSets(const std::vector<std::filesystem::path>& logs);
 
 /// Options of runBench; unset optionals take the cfg's values.
 struct BenchOptions {
@@ -111,7 +137,8 @@ std::string logFileName(const std::string& config, CheckerKind checker, const Be
 std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names);
 
 /// Runs the benchmark (see the file comment). Throws InvalidInputError for
-/// bad options (no checker, runs < 1, time limit <= 0, more shards than
+/// bad options (no checker, runs < 1, time or memory limit <= 0 or above
+/// kMaxTimeLimit / kMaxMemLimit, more shards than
 /// runs, a cfg with run_count = 0 and no runs option) or a log that cannot be
 /// written, and what ProblemSetup / makePlanner throw.
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options,

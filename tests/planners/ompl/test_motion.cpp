@@ -212,10 +212,13 @@ TEST(ThinWall, DiscreteValidatorPassesThroughItOursDoesNot) {
   naive_options.solver = FclCcdSolver::kNaive;
   const FclContinuousMotionValidator naive(fx.fcl_si, fx.space, fx.fcl, naive_options);
   const FclContinuousMotionValidator ca(fx.fcl_si, fx.space, fx.fcl);
+  auto many_options = FclCcdOptions();
+  many_options.num_max_iterations = 1000;  // OMPL.app's request uses 10
+  const FclContinuousMotionValidator ca_many(fx.fcl_si, fx.space, fx.fcl, many_options);
   testing::Rng rng(testing::seed());
   ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
   const int n = 200 * testing::scale();
-  int discrete_passes = 0, naive_passes = 0, ca_passes = 0;
+  int discrete_passes = 0, naive_passes = 0, ca_passes = 0, ca_many_passes = 0;
   for (int i = 0; i < n; ++i) {
     const double y = std::uniform_real_distribution<double>(-4.5, 4.5)(rng);
     const double x1 = std::uniform_real_distribution<double>(5.0, 45.0)(rng);
@@ -236,11 +239,12 @@ TEST(ThinWall, DiscreteValidatorPassesThroughItOursDoesNot) {
     discrete_passes += fx.fcl_si->checkMotion(s1.get(), s2.get());
     naive_passes += naive.checkMotion(s1.get(), s2.get());
     ca_passes += ca.checkMotion(s1.get(), s2.get());
+    ca_many_passes += ca_many.checkMotion(s1.get(), s2.get());
   }
   std::printf(
       "thin wall (0.05, resolution %.3f): %d edges across it; passed by OMPL's discrete validator + FCL: %d, "
-      "FCL naive CCD: %d, FCL conservative advancement: %d, MDD: 0\n",
-      resolution, n, discrete_passes, naive_passes, ca_passes);
+      "FCL naive CCD: %d, FCL conservative advancement: %d (%d with 1000 iterations), MDD: 0\n",
+      resolution, n, discrete_passes, naive_passes, ca_passes, ca_many_passes);
   EXPECT_GT(discrete_passes, n / 2);  // OMPL's discrete check misses most of them
   EXPECT_GT(naive_passes, n / 2);     // the naive solver is a 10-sample discrete check
 }

@@ -10,7 +10,6 @@
 #include <functional>
 #include <limits>
 #include <map>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <system_error>
@@ -137,6 +136,30 @@ std::uint32_t shardSeed(long seed, const BenchShard& shard) {
   return static_cast<std::uint32_t>(1 + h % 0xfffffffeULL);
 }
 
+namespace {
+
+/// "<stem>.shard<I>of<N>.log" (as logFileName writes it) -> stem, I, N.
+bool parseShardLogName(const std::string& name, std::string* stem, int* index, int* count) {
+  const std::string suffix = ".log";
+  const std::size_t at = name.rfind(".shard");
+  if (at == std::string::npos || name.size() < suffix.size() ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return false;
+  }
+  const std::string middle = name.substr(at + 6, name.size() - suffix.size() - at - 6);  // "<I>of<N>"
+  const std::size_t of = middle.find("of");
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && t.size() < 10 && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (of == std::string::npos || !digits(middle.substr(0, of)) || !digits(middle.substr(of + 2))) return false;
+  *stem = name.substr(0, at);
+  *index = std::stoi(middle.substr(0, of));
+  *count = std::stoi(middle.substr(of + 2));
+  return true;
+}
+
+}  // namespace
+
 void checkShardSets(const std::vector<std::filesystem::path>& logs) {
   // Per "<config>-<checker>": unsharded logs, and shard index sets per N.
   struct Group {
@@ -144,12 +167,12 @@ void checkShardSets(const std::vector<std::filesystem::path>& logs) {
     std::map<int, std::set<int>> shards;
   };
   std::map<std::string, Group> groups;
-  const std::regex sharded(R"((.*)\.shard(\d+)of(\d+)\.log)");
   for (const auto& path : logs) {
-    const std::string name = path.filename().string();
-    std::smatch m;
-    if (std::regex_match(name, m, sharded)) {
-      groups[m[1]].shards[std::stoi(m[3])].insert(std::stoi(m[2]));
+    std::string stem;
+    int index = 0;
+    int count = 0;
+    if (parseShardLogName(path.filename().string(), &stem, &index, &count)) {
+      groups[stem].shards[count].insert(index);
     } else {
       ++groups[path.stem().string()].unsharded;
     }

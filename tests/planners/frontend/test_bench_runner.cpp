@@ -235,7 +235,7 @@ TEST(BenchShards, ReportNeedsCompleteShardSets) {
   };
   EXPECT_EQ(error({"d/tiny-mdd.log", "d/tiny-fcl.log"}), "");
   EXPECT_EQ(error({"d/tiny-mdd.shard0of2.log", "d/tiny-mdd.shard1of2.log", "d/tiny-fcl.log"}), "");
-  EXPECT_EQ(error({"d/other.log"}), "");
+  EXPECT_EQ(error({"d/other.log", "d/tiny-mdd.shardXof2.log", "d/tiny-mdd.shard1of.log"}), "");  // not shard names
   EXPECT_NE(error({"d/tiny-mdd.log", "d/tiny-mdd.shard0of2.log", "d/tiny-mdd.shard1of2.log"})
                 .find("tiny-mdd: both an unsharded log and shard logs"),
             std::string::npos);

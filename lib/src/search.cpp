@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "key_set.h"
 #include "mddual/defaults.h"
 #include "mddual/error.h"
 #include "planar.h"
@@ -37,61 +38,6 @@ namespace mddual::detail {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// Open-addressing hash set of faces of M (paper VI-D: a hash table of
-/// visited faces). Reused across queries of one thread: clear() is O(1).
-class VisitedSet {
- public:
-  void clear() {
-    if (++generation_ == 0) {
-      std::fill(stamps_.begin(), stamps_.end(), 0u);
-      generation_ = 1;
-    }
-    size_ = 0;
-  }
-  /// Inserts key; true when it was not there yet.
-  bool insert(std::uint64_t key) {
-    if (2 * (size_ + 1) > keys_.size()) grow();
-    const std::size_t mask = keys_.size() - 1;
-    for (std::size_t i = mix(key) & mask;; i = (i + 1) & mask) {
-      if (stamps_[i] != generation_) {
-        stamps_[i] = generation_;
-        keys_[i] = key;
-        ++size_;
-        return true;
-      }
-      if (keys_[i] == key) return false;
-    }
-  }
-
- private:
-  static std::size_t mix(std::uint64_t x) {  // splitmix64 finaliser
-    x ^= x >> 30;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27;
-    x *= 0x94d049bb133111ebULL;
-    x ^= x >> 31;
-    return static_cast<std::size_t>(x);
-  }
-  void grow() {
-    std::vector<std::uint64_t> old_keys;
-    std::vector<std::uint32_t> old_stamps;
-    old_keys.swap(keys_);
-    old_stamps.swap(stamps_);
-    const std::size_t capacity = std::max<std::size_t>(64, 2 * old_keys.size());
-    keys_.assign(capacity, 0);
-    stamps_.assign(capacity, 0);
-    const std::uint32_t live = generation_;
-    size_ = 0;
-    for (std::size_t i = 0; i < old_keys.size(); ++i) {
-      if (old_stamps[i] == live) insert(old_keys[i]);
-    }
-  }
-  std::vector<std::uint64_t> keys_;
-  std::vector<std::uint32_t> stamps_;
-  std::uint32_t generation_ = 1;
-  std::size_t size_ = 0;
-};
 
 /// The face across edge e from face f.
 int otherFace(const ConvexPolytope::Edge& e, int f) {
@@ -116,7 +62,7 @@ struct EdgeInA {
 
 /// Per-thread scratch memory, so that a query does not allocate once warm.
 struct Scratch {
-  VisitedSet visited;
+  KeySet visited{64};  ///< faces of M visited (paper VI-D: a hash table of visited faces)
   std::vector<int> ties_a;
   std::vector<int> ties_b;
   std::vector<EdgeInA> edges_a;

@@ -1,33 +1,19 @@
 #include <string>
 
+#include "checker_arguments.h"
 #include "mddual/error.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/mdd_checkers.h"
 
 namespace mddual::planning {
-namespace {
-
 namespace ob = ompl::base;
-
-void checkArguments(const char* who, const ob::SpaceInformationPtr& si, const PlanningSpacePtr& space,
-                    const void* scene) {
-  const std::string name(who);
-  if (!si) throw InvalidInputError(name + ": the SpaceInformation is null");
-  if (!space) throw InvalidInputError(name + ": the PlanningSpace is null");
-  if (!scene) throw InvalidInputError(name + ": the FclScene is null");
-  if (si->getStateSpace() != space->stateSpace()) {
-    throw InvalidInputError(name + ": the SpaceInformation's state space is not the PlanningSpace's");
-  }
-}
-
-}  // namespace
 
 // ---- FclStateValidityChecker -----------------------------------------------------
 
 FclStateValidityChecker::FclStateValidityChecker(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
                                                  std::shared_ptr<const FclScene> scene)
     : ob::StateValidityChecker(si), space_(std::move(space)), scene_(std::move(scene)) {
-  checkArguments("FclStateValidityChecker", si, space_, scene_.get());
+  detail::checkCheckerArguments("FclStateValidityChecker", "FclScene", si, space_, scene_.get());
 }
 
 bool FclStateValidityChecker::isValid(const ob::State* state) const {
@@ -46,7 +32,7 @@ FclContinuousMotionValidator::FclContinuousMotionValidator(const ob::SpaceInform
                                                            std::shared_ptr<const FclScene> scene,
                                                            const FclCcdOptions& options)
     : ob::MotionValidator(si), space_(std::move(space)), scene_(std::move(scene)), options_(options) {
-  checkArguments("FclContinuousMotionValidator", si, space_, scene_.get());
+  detail::checkCheckerArguments("FclContinuousMotionValidator", "FclScene", si, space_, scene_.get());
   if (options_.num_max_iterations < 2) {
     throw InvalidInputError("FclContinuousMotionValidator: num_max_iterations " +
                             std::to_string(options_.num_max_iterations) + " is below 2");

@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "checker_arguments.h"
 #include "mddual/error.h"
 
 namespace mddual::planning {
@@ -15,18 +16,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// lastValid back-off: first step and growth (fractions of the edge).
 constexpr double kFirstBackoff = 1e-9;
 constexpr double kBackoffGrowth = 10.0;
-
-void checkArguments(const char* who, const ob::SpaceInformationPtr& si, const PlanningSpacePtr& space,
-                    const void* scene) {
-  const std::string name(who);
-  if (!si) throw InvalidInputError(name + ": the SpaceInformation is null");
-  if (!space) throw InvalidInputError(name + ": the PlanningSpace is null");
-  if (!scene) throw InvalidInputError(name + ": the scene is null");
-  if (si->getStateSpace() != space->stateSpace()) {
-    throw InvalidInputError(name + ": the SpaceInformation's state space is not the PlanningSpace's (" +
-                            si->getStateSpace()->getName() + " vs " + space->stateSpace()->getName() + ")");
-  }
-}
 
 }  // namespace
 
@@ -54,7 +43,7 @@ void setLastValid(const ob::SpaceInformation& si, const ob::State* s1, const ob:
 MddStateValidityChecker::MddStateValidityChecker(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
                                                  std::shared_ptr<const MddScene> scene)
     : ob::StateValidityChecker(si), space_(std::move(space)), scene_(std::move(scene)) {
-  checkArguments("MddStateValidityChecker", si, space_, scene_.get());
+  detail::checkCheckerArguments("MddStateValidityChecker", "scene", si, space_, scene_.get());
 }
 
 bool MddStateValidityChecker::isValid(const ob::State* state) const {
@@ -72,7 +61,7 @@ bool MddStateValidityChecker::isValid(const ob::State* state) const {
 MddMotionValidator::MddMotionValidator(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
                                        std::shared_ptr<const MddScene> scene)
     : ob::MotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
-  checkArguments("MddMotionValidator", si, space_, scene_.get());
+  detail::checkCheckerArguments("MddMotionValidator", "scene", si, space_, scene_.get());
 }
 
 void MddMotionValidator::countOmpl(bool valid) const {

@@ -34,6 +34,7 @@ inline Json toJson(const PenetrationStats& s) {
               {"arc_pairs", s.arc_pairs},
               {"walk_steps", s.walk_steps},
               {"walk_fallbacks", s.walk_fallbacks},
+              {"brute_fallbacks", s.brute_fallbacks},
               {"pruned", s.pruned},
               {"support_vertices", s.support_vertices},
               {"grid_directions", s.grid_directions},

@@ -434,8 +434,8 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
     out.warnings.push_back(display(file) + ": skipped " + std::to_string(skipped.size()) + " of " +
                            std::to_string(out.triangles) + " triangles that are not polytopes (zero area, " +
                            "repeated or collinear corners, or slivers): " + triangleList(skipped) +
-                           "; each lies within " + shortNumber(skipped_height) +
-                           " of its longest edge, which its neighbours share if the mesh is closed");
+                           "; none extends more than " + shortNumber(skipped_height) +
+                           " from its longest edge, which neighbouring triangles share in a closed mesh");
   }
   return pieces;
 }

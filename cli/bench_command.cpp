@@ -423,6 +423,7 @@ void runBenchCommand(const BenchFlags& f) {
   } catch (const std::exception& e) {
     throw FatalError(e.what());
   }
+  for (const std::string& w : problem.scene->warnings) std::cerr << "bench: warning: " << w << "\n";
   if (!f.output.empty()) {
     options.output_dir = f.output;
   } else if (!problem.config.output.empty()) {
@@ -486,7 +487,9 @@ void registerBenchCommand(CLI::App& app) {
   sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
   sub->add_option("--checkers", flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
       ->option_text("LIST");
-  sub->add_option("--planners", flags->planners, "comma-separated planner names of the cfg (default: all)")
+  sub->add_option("--planners", flags->planners,
+                  "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
+                  "the cfg's)")
       ->option_text("LIST");
   sub->add_option("--runs", flags->runs, "runs per planner (default: the cfg's run_count)")->option_text("N");
   sub->add_option("--time-limit", flags->time_limit, "seconds per run (default: the cfg's time_limit)")

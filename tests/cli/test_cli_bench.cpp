@@ -221,7 +221,7 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
       {{cfg, "--time-limit=-1"}, "--time-limit: '-1' is not a positive number"},
       {{cfg, "--time-limit", "1e18", "--output", out}, "the time limit must be a positive number of seconds, at most"},
       {{cfg, "--seed", "0"}, "--seed: '0' is not a positive integer"},
-      {{cfg, "--planners", "prm"}, "planner 'prm' is not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},
+      {{cfg, "--planners", "prn"}, "unknown planner 'prn': not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},
       {{cfg, "--shard", "2/3", "--output", out}, "--shard 2/3: only 2 runs per planner, so at most 2 shards"},
       {{}, "no config file given"},
       {{cfg, "--report", out}, "either a config file or --report DIR"},

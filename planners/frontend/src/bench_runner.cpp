@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "mddual/error.h"
+#include "mddual/planning/planner_factory.h"
 
 namespace mddual::planning {
 
@@ -206,24 +207,7 @@ std::string logFileName(const std::string& config, CheckerKind checker, const Be
 }
 
 std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names) {
-  const auto& all = problem.config.planners;
-  if (all.empty()) throw InvalidInputError(cfgName(problem) + ": the [planner] section names no planner");
-  std::string listed;
-  for (const scene::PlannerSpec& p : all) {
-    if (listed.find(" " + p.name + ",") == std::string::npos) listed += " " + p.name + ",";
-  }
-  listed = listed.substr(1, listed.size() - 2);
-  for (const std::string& n : names) {
-    const bool found = std::any_of(all.begin(), all.end(), [&](const scene::PlannerSpec& p) { return p.name == n; });
-    if (!found) {
-      throw InvalidInputError("planner '" + n + "' is not in " + cfgName(problem) + " (its planners: " + listed + ")");
-    }
-  }
-  std::vector<scene::PlannerSpec> out;
-  for (const scene::PlannerSpec& p : all) {
-    if (names.empty() || std::find(names.begin(), names.end(), p.name) != names.end()) out.push_back(p);
-  }
-  return out;
+  return selectPlannerSpecs(problem.config.planners, names, cfgName(problem));
 }
 
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options, const BenchObserver& observer) {

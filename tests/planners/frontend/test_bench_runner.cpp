@@ -266,7 +266,7 @@ TEST_F(BenchRunner, OptionErrors) {
   expectError([](BenchOptions& o) { o.mem_limit = 1e300; }, "memory limit must be a positive number of MB, at most");
   expectError([](BenchOptions& o) { o.checkers.clear(); }, "no checker");
   expectError([](BenchOptions& o) { o.shard = BenchShard{2, 3}; }, "only 2 runs per planner, so at most 2 shards");
-  expectError([](BenchOptions& o) { o.planners = {"rrt"}; }, "planner 'rrt' is not in tiny.cfg");
+  expectError([](BenchOptions& o) { o.planners = {"rrtt"}; }, "unknown planner 'rrtt': not in tiny.cfg");
   EXPECT_FALSE(fs::exists(dir_ / "err" / "tiny-mdd.log"));
 }
 

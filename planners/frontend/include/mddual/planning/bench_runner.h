@@ -132,8 +132,9 @@ struct BenchLog {
 /// "<config>-<checker>.log", or "<config>-<checker>.shard<I>of<N>.log" for a shard.
 std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard);
 
-/// The cfg's planners that `names` selects (all when empty), in cfg order;
-/// throws InvalidInputError for a name the cfg does not have.
+/// The planners `names` selects (all the cfg's when empty): see
+/// selectPlannerSpecs (a name the cfg does not list runs with OMPL's
+/// defaults); throws InvalidInputError for a name no planner has.
 std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names);
 
 /// Runs the benchmark (see the file comment). Throws InvalidInputError for

@@ -102,7 +102,7 @@ void savePath(const og::PathGeometric& path, const std::filesystem::path& file) 
 }  // namespace
 
 BenchShard parseShard(const std::string& text) {
-  const std::string what = "--shard '" + text + "': expected I/N with 0 <= I < N (e.g. 0/4)";
+  const std::string what = "--shard '" + clipForMessage(text) + "': expected I/N with 0 <= I < N (e.g. 0/4)";
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) throw InvalidInputError(what);
   BenchShard s;
@@ -210,6 +210,15 @@ std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std
   return selectPlannerSpecs(problem.config.planners, names, cfgName(problem));
 }
 
+void checkBenchProblem(const Problem& problem) {
+  if (problem.name.size() > kMaxProblemNameBytes) {
+    throw InvalidInputError(cfgName(problem) + ": the problem name '" + clipForMessage(problem.name) +
+                            "' is too long: it names the experiment and the log files; at most " +
+                            std::to_string(kMaxProblemNameBytes) + " bytes");
+  }
+  checkStartAndGoal(problem);  // OMPL would only report every run unsolved
+}
+
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options, const BenchObserver& observer) {
   const scene::ProblemConfig& cfg = problem.config;
   if (options.checkers.empty()) throw InvalidInputError("no checker to run");
@@ -238,6 +247,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
                             " runs per planner, so at most " + std::to_string(runs) + " shards");
   }
   const std::vector<scene::PlannerSpec> specs = selectPlanners(problem, options.planners);
+  checkBenchProblem(problem);
   const std::vector<int> run_indices = shardRuns(runs, shard);
   const int n = static_cast<int>(run_indices.size());
 

@@ -25,6 +25,8 @@ import os
 import random
 import sys
 
+import meshgen
+
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 OUT = os.path.join(ROOT, "configs")
 
@@ -65,9 +67,14 @@ def mesh(filename, centre=(0, 0, 0), rpy=(0, 0, 0)):
     return {"xyz": centre, "rpy": rpy, "geometry": '<mesh filename="%s"/>' % filename}
 
 
-def obj(vertices, faces, comment):
+def obj(vertices, faces, comment, decimals=None):
+    """OBJ text; coordinates with 6 decimals, or exactly with up to
+    `decimals` decimals."""
     lines = ["# " + comment]
-    lines += ["v %s" % vec(v) for v in vertices]
+    if decimals is None:
+        lines += ["v %s" % vec(v) for v in vertices]
+    else:
+        lines += ["v %s" % " ".join(meshgen.num(c, decimals) for c in v) for v in vertices]
     lines += ["f %s" % " ".join(str(i + 1) for i in f) for f in faces]
     return "\n".join(lines) + "\n"
 
@@ -171,6 +178,9 @@ them. Translation only (translation_only = true is mddual's key: R^3 space,
 orientation fixed at the start's). The default config of scripts/run.sh.""")
 
 
+ROCK_GRID = 2 ** 14  # convex_field's vertices are multiples of 1/ROCK_GRID m
+
+
 def convex_field(files):
     """60 random convex frusta (OBJ meshes, one convex piece each) in a 20 m
     cube; a 1 x 0.6 x 0.4 m box robot crosses it diagonally, translating."""
@@ -182,12 +192,18 @@ def convex_field(files):
         angles = sorted(rng.uniform(0, 2 * math.pi) for _ in range(k))
         polygon = [(a * math.cos(t), b * math.sin(t)) for t in angles]
         h = rng.uniform(0.8, 2.5)
-        vertices, faces = prism(polygon, -h / 2, h / 2, rng.uniform(0.4, 1.0))
+        vertices, _ = prism(polygon, -h / 2, h / 2, rng.uniform(0.4, 1.0))
         q = random_quaternion(rng)
         centre = (rng.uniform(3, 17), rng.uniform(3, 17), rng.uniform(3, 17))
         vertices = [tuple(p[j] + centre[j] for j in range(3)) for p in rotate(vertices, q)]
+        # Written as the exact hull of its vertices snapped to multiples of
+        # 2^-14 m, values that the decimals written and assimp's floats hold
+        # exactly: every face is planar as loaded. (Rounded anyhow, the side
+        # faces bend slightly and the loader reads the rock as a hollow soup.)
+        snapped = [tuple(round(c * ROCK_GRID) / ROCK_GRID for c in p) for p in vertices]
+        vertices, faces = meshgen.exact_hull(snapped, ROCK_GRID)
         name = "meshes/rock_%02d.obj" % i
-        files["convex_field/" + name] = obj(vertices, faces, "convex obstacle %d (frustum), world frame" % i)
+        files["convex_field/" + name] = obj(vertices, faces, "convex obstacle %d (frustum), world frame" % i, 14)
         collisions.append(mesh(name))
     files["convex_field/world.urdf"] = urdf("convex_field", collisions)
     files["convex_field/robot.urdf"] = urdf("box", [box((0, 0, 0), (1.0, 0.6, 0.4))])

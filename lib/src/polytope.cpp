@@ -150,7 +150,18 @@ void PolytopeBuilder::buildFlat(const std::vector<Eigen::Vector3d>& points, cons
   std::vector<Eigen::Vector2d> planar;
   planar.reserve(points.size());
   for (const Eigen::Vector3d& p : points) planar.emplace_back(p.dot(e1), p.dot(e2));
-  const std::vector<int> ring = detail::hull2d(planar, "polytope (flat polygon)");
+  // A triangle (every piece of a triangle mesh) is its own hull: order its
+  // corners counter-clockwise without a qhull run (qhull's set-up dominated
+  // the loading of 40,000-triangle meshes). The collinearity test above
+  // guarantees a nonzero area.
+  std::vector<int> ring;
+  if (planar.size() == 3) {
+    const Eigen::Vector2d d1 = planar[1] - planar[0];
+    const Eigen::Vector2d d2 = planar[2] - planar[0];
+    ring = d1.x() * d2.y() - d1.y() * d2.x() > 0.0 ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 2, 1};
+  } else {
+    ring = detail::hull2d(planar, "polytope (flat polygon)");
+  }
   out_->flat_ = true;
   // Two faces with the same loop: +normal counter-clockwise, -normal reversed.
   std::vector<Face> faces(2);

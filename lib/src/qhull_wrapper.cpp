@@ -74,22 +74,32 @@ class QhullRun {
     const int count = static_cast<int>(coords->size()) / dim;
     exit_code_ = qh_new_qhull(&qh_, dim, count, coords->data(), False, options.data(), nullptr, errors_.stream());
     if (exit_code_ != 0) {
+      // The destructor does not run when the constructor throws: free here
+      // (qhull allocated its buffers before it failed; the fuzzer's leak
+      // check found them lost on every failed hull).
+      const std::string message = summary(errors_.text());
+      release();
       throw HullError(what + ": the convex hull failed (qhull exit code " + std::to_string(exit_code_) +
-                      "): " + summary(errors_.text()));
+                      "): " + message);
     }
   }
-  ~QhullRun() {
-    qh_freeqhull(&qh_, !qh_ALL);
-    int curlong = 0;
-    int totlong = 0;
-    qh_memfreeshort(&qh_, &curlong, &totlong);
-  }
+  ~QhullRun() { release(); }
   QhullRun(const QhullRun&) = delete;
   QhullRun& operator=(const QhullRun&) = delete;
 
   qhT* qh() { return &qh_; }
 
  private:
+  void release() {
+    if (released_) return;
+    released_ = true;
+    qh_freeqhull(&qh_, !qh_ALL);
+    int curlong = 0;
+    int totlong = 0;
+    qh_memfreeshort(&qh_, &curlong, &totlong);
+  }
+
+  bool released_ = false;
   qhT qh_{};
   ErrorCapture errors_;
   int exit_code_ = 0;

@@ -8,6 +8,7 @@
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/polytope.h"
+#include "qhull_wrapper.h"
 
 namespace mddual {
 namespace {
@@ -186,6 +187,29 @@ TEST(Polytope, FarFromTheOriginKeepsItsShape) {
   EXPECT_TRUE(tri.isFlat());
   EXPECT_EQ(tri.numVertices(), 3);
   expectWellFormed(tri);
+}
+
+}  // namespace
+}  // namespace mddual
+
+namespace mddual {
+namespace {
+
+TEST(QhullWrapper, FailureIsReportedBrieflyAndFreesQhull) {
+  // Found by fuzz_polytope: qhull's buffers leaked on every failed hull (the
+  // wrapper threw from its constructor, so its destructor never ran); the
+  // leak check of the sanitizer build fails this test if that comes back.
+  const std::vector<Eigen::Vector3d> coplanar = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  try {
+    detail::hull3d(coplanar, "test");
+    ADD_FAILURE() << "qhull built a 3D hull of coplanar points";
+  } catch (const HullError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("test: the convex hull failed (qhull exit code"), std::string::npos) << what;
+    EXPECT_NE(what.find("QH6"), std::string::npos) << what;  // qhull's code and first sentence ...
+    EXPECT_LT(what.size(), 400u) << what;                    // ... not its kilobytes of diagnostics
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
 }
 
 }  // namespace

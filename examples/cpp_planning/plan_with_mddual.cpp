@@ -101,18 +101,19 @@ int run(const std::string& cfg, double seconds) {
   //    direction, from its start. A free translation segment ends before the
   //    first contact (touching counts as collision), so clearance > length.
   int errors = 0;
-  for (std::size_t i = 0; i + 1 < path.getStateCount(); ++i) {
+  const auto n_states = static_cast<unsigned int>(path.getStateCount());
+  for (unsigned int i = 0; i + 1 < n_states; ++i) {
     const ob::State* s1 = path.getState(i);
     const ob::State* s2 = path.getState(i + 1);
     const mp::EdgeMotion motion = space->motion(s1, s2);
     const mp::EdgeContact edge = mp::edgeContact(*scene, *space, s1, s2);
     if (edge.collides) {
-      std::printf("segment %zu: collides at fraction %.6g\n", i, edge.fraction);
+      std::printf("segment %u: collides at fraction %.6g\n", i, edge.fraction);
       ++errors;
       continue;
     }
     if (motion.length() == 0.0) {
-      std::printf("segment %zu: rotation only\n", i);
+      std::printf("segment %u: rotation only\n", i);
       continue;
     }
     const mp::DirectedClearance c = mp::directedClearance(*scene, *space, s1, motion.p_end - motion.p_start);
@@ -120,7 +121,7 @@ int run(const std::string& cfg, double seconds) {
     if (std::isfinite(c.distance) && c.contact.world_piece >= 0) {
       contact = "first contact: " + sc.world.pieces()[static_cast<std::size_t>(c.contact.world_piece)].origin;
     }
-    std::printf("segment %zu: length %.6g%s, clearance ahead %.6g (%s)\n", i, motion.length(),
+    std::printf("segment %u: length %.6g%s, clearance ahead %.6g (%s)\n", i, motion.length(),
                 motion.rotates() ? " (rotating)" : "", c.distance, contact.c_str());
     if (c.start_collides || (!motion.rotates() && !(c.distance > motion.length()))) {
       std::printf("  error: a free translation segment must end before the first contact\n");

@@ -1,7 +1,8 @@
 # cmake -P script behind the ctest install.find_package_consumer (see
 # CMakeLists.txt here). Inputs: BUILD_DIR (a built mddual), EXAMPLE_DIR
 # (examples/cpp_planning), CFG (the config it plans), WORK_DIR (scratch),
-# CXX_COMPILER and LAUNCHER (the build's, for the consumer builds),
+# CXX_COMPILER, LAUNCHER and CXX_FLAGS (the build's compiler, launcher and
+# warning flags, for the example),
 # HAVE_PLANNING (whether the build has the scene and planning components).
 #   1. cmake --install into WORK_DIR/prefix;
 #   2. the example against the install (CMAKE_PREFIX_PATH only), built and run;
@@ -82,7 +83,8 @@ foreach(kind install build_tree)
     set(where -Dmddual_DIR=${BUILD_DIR})
     set(expected_dir ${BUILD_DIR})
   endif()
-  run("configure example (${kind})" ${CMAKE_COMMAND} -S ${EXAMPLE_DIR} -B ${bdir} ${where} ${common_args})
+  run("configure example (${kind})" ${CMAKE_COMMAND} -S ${EXAMPLE_DIR} -B ${bdir} ${where} ${common_args}
+      "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}")
   # The package really came from where it should (not another install).
   file(STRINGS ${bdir}/CMakeCache.txt found_dir REGEX "^mddual_DIR:")
   string(FIND "${found_dir}" "${expected_dir}" at)

@@ -81,7 +81,9 @@ int run(const std::string& cfg, double seconds) {
   // 3. Plan.
   const ob::PlannerStatus status = ss.solve(seconds);
   if (status != ob::PlannerStatus::EXACT_SOLUTION) {
-    return fail("RRT-Connect found no exact solution in " + std::to_string(seconds) + " s (" + status.asString() + ")");
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%g", seconds);
+    return fail(std::string("RRT-Connect found no exact solution in ") + limit + " s (" + status.asString() + ")");
   }
   ss.simplifySolution(kSimplifySeconds);
   const og::PathGeometric& path = ss.getSolutionPath();

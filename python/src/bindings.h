@@ -28,5 +28,8 @@ void bindTypes(py::module_& m);
 void bindQueries(py::module_& m);
 /// mdd_batch, toi_batch, intersect_batch and the status tables.
 void bindBatch(py::module_& m);
+/// mddual.Scene and mddual.SceneError (only when the planning layer is built:
+/// MDDUAL_PYTHON_HAS_PLANNING).
+void bindScene(py::module_& m);
 
 }  // namespace mddual::python

@@ -15,4 +15,7 @@ PYBIND11_MODULE(mddual, m) {
   mp::bindTypes(m);
   mp::bindQueries(m);
   mp::bindBatch(m);
+#ifdef MDDUAL_PYTHON_HAS_PLANNING
+  mp::bindScene(m);
+#endif
 }

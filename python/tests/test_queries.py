@@ -277,3 +277,16 @@ def test_delta_out_of_range_raises_invalid_input(unit_cube, delta):
 def test_polytope_argument_must_be_a_polytope(unit_cube):
     with pytest.raises(TypeError):
         mddual.mdd(cube_points(), None, unit_cube, None, [1.0, 0.0, 0.0])
+
+
+def test_any_layout_and_numeric_dtype_is_accepted(unit_cube):
+    # Fortran-order and strided arrays, integers and lists are converted.
+    X = np.asfortranarray(translation(3.0))
+    s = np.array([[-2, 9], [0, 9], [0, 9]])[:, 0]  # a strided int view
+    r = mddual.mdd(unit_cube, np.eye(4, dtype=np.float32), unit_cube, X, s)
+    assert r.distance == pytest.approx(2.0, abs=TOL)
+    X_WB = np.stack([translation(3.0), translation(4.0)]).transpose(0, 2, 1).copy().transpose(0, 2, 1)
+    out = mddual.mdd_batch(unit_cube, None, unit_cube, X_WB, [-1, 0, 0])
+    np.testing.assert_allclose(out["distance"], [2.0, 3.0], atol=TOL)
+    ints = mddual.ConvexPolytope([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)])
+    assert ints.num_faces == 6

@@ -87,6 +87,14 @@ class StateHolder {
   ob::State* state_;
 };
 
+scene::SpaceKind spaceKindFrom(const std::string& text) {
+  for (scene::SpaceKind kind :
+       {scene::SpaceKind::kSE2, scene::SpaceKind::kSE3, scene::SpaceKind::kR2, scene::SpaceKind::kR3}) {
+    if (text == mp::toString(mp::toPlanningKind(kind))) return kind;
+  }
+  throw py::value_error("space: expected 'SE2', 'SE3', 'R2' or 'R3', got '" + text + "'");
+}
+
 std::string itemName(const char* name, std::size_t k, bool batched) {
   return batched ? std::string(name) + "[" + std::to_string(k) + "]" : std::string(name);
 }
@@ -104,6 +112,41 @@ class Scene {
   }
 
   static Scene load(const std::filesystem::path& cfg) { return Scene(mp::loadProblem(cfg)); }
+
+  /// A scene from polytopes in memory: the robot's pieces in its frame R, the
+  /// world's in the world frame, kConvex pieces as the loaders make them.
+  static Scene fromPolytopes(const std::vector<ConvexPolytope>& robot, const std::vector<ConvexPolytope>& world,
+                             const std::string& space, const py::object& bounds, const py::object& start,
+                             const py::object& goal, const std::string& name) {
+    scene::ProblemScene sc;
+    sc.space = spaceKindFrom(space);
+    const DoubleArray b = toDoubleArray(bounds, "bounds", "a (2, 3) array: min and max corner");
+    if (b.ndim() != 2 || b.shape(0) != 2 || b.shape(1) != 3) {
+      throw py::value_error("bounds: expected a (2, 3) array: min and max corner, got shape " + shapeText(b));
+    }
+    sc.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(b.at(0, 0), b.at(0, 1), b.at(0, 2)),
+                                    Eigen::Vector3d(b.at(1, 0), b.at(1, 1), b.at(1, 2)));
+    sc.start = poseFrom(start, "start");
+    sc.goal = poseFrom(goal, "goal");
+    std::vector<scene::Piece> robot_pieces;
+    for (std::size_t i = 0; i < robot.size(); ++i) {
+      robot_pieces.push_back(scene::Piece::make(robot[i], scene::PieceKind::kConvex, "robot " + std::to_string(i)));
+    }
+    std::vector<scene::Piece> world_pieces;
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      world_pieces.push_back(scene::Piece::make(world[i], scene::PieceKind::kConvex, "world " + std::to_string(i)));
+    }
+    sc.robot = scene::RigidBody(std::move(robot_pieces), "robot");
+    sc.world = scene::World(std::move(world_pieces), "world");
+    scene::ProblemConfig config;
+    config.name = name;
+    config.space = sc.space;
+    Scene out(mp::makeProblem(std::move(config), std::move(sc)));
+    // The start and goal must be states of the space (e.g. planar for SE2).
+    out.stateOf(out.problem().scene->start);
+    out.stateOf(out.problem().scene->goal);
+    return out;
+  }
 
   const mp::Problem& problem() const { return problem_; }
   const mp::PlanningSpace& space() const { return *space_; }
@@ -296,6 +339,12 @@ void bindScene(py::module_& m) {
       .def_static("load", &Scene::load, py::arg("cfg"),
                   "Reads an OMPL.app-style .cfg and loads its robot and world (SceneError naming the file and "
                   "line for anything wrong).")
+      .def_static("from_polytopes", &Scene::fromPolytopes, py::arg("robot"), py::arg("world"), py::kw_only(),
+                  py::arg("space") = "SE3", py::arg("bounds"), py::arg("start") = py::none(),
+                  py::arg("goal") = py::none(), py::arg("name") = "in_memory",
+                  "A scene from polytopes in memory: robot pieces (frame R) and world pieces (world frame), "
+                  "the space kind, the position bounds ((2, 3): min and max corner) and the start and goal poses "
+                  "(None: identity; the translation-only spaces keep the start's orientation).")
       .def_property_readonly("name", [](const Scene& s) { return s.problem().name; })
       .def_property_readonly("space", [](const Scene& s) { return mp::toString(s.space().kind()); })
       .def_property_readonly("state_dimension", &Scene::dimension)

@@ -245,3 +245,50 @@ def test_bad_inputs_raise(boxes, tmp_path):
     bad.write_text(CFG.format(extra="").replace("start.x = -3", "start.x = abc"))
     with pytest.raises(mddual.SceneError, match=r"bad.cfg:5: start.x: 'abc' is not a number"):
         mddual.Scene.load(bad)
+
+
+# ---- scenes from memory -----------------------------------------------------------
+
+def test_from_polytopes_equals_the_loaded_scene(boxes, tmp_path, rng):
+    cube = mddual.ConvexPolytope(np.array([[x, y, z] for x in (-.5, .5) for y in (-.5, .5) for z in (-.5, .5)]))
+    mem = mddual.Scene.from_polytopes([cube], [cube], space="SE3", bounds=[[-5, -5, -5], [5, 5, 5]],
+                                      start=translation(-3.0), goal=translation(3.0), name="boxes")
+    assert mem.space == "SE3" and mem.name == "boxes"
+    np.testing.assert_array_equal(mem.start_state, boxes.start_state)
+    poses = np.stack([translation(*rng.uniform(-2.5, 2.5, size=3)) for _ in range(100)])
+    for k in range(len(poses)):
+        poses[k, :3, :3] = random_rotation(rng)
+    assert mem.collides(poses).tolist() == boxes.collides(poses).tolist()
+    directions = rng.normal(size=(100, 3))
+    a = mem.directed_clearance(poses, directions)["distance"]
+    b = boxes.directed_clearance(poses, directions)["distance"]
+    np.testing.assert_array_equal(a, b)
+    starts = np.stack([mem.state(X) for X in poses[:50]])
+    ends = np.stack([mem.state(X) for X in poses[50:]])
+    np.testing.assert_array_equal(mem.check_edges(starts, ends)["fraction"],
+                                  boxes.check_edges(starts, ends)["fraction"])
+
+
+def test_from_polytopes_planar_and_empty_world():
+    square = mddual.ConvexPolytope([[x, y, z] for x in (-.5, .5) for y in (-.5, .5) for z in (-.5, .5)])
+    free = mddual.Scene.from_polytopes([square], [], space="R2", bounds=[[0, 0, 0], [10, 10, 0]])
+    assert free.state_dimension == 2
+    assert free.is_valid([[1, 1], [11, 1]]).tolist() == [True, False]
+    assert free.check_edges([1, 1], [9, 9])["collides"].tolist() == [False]
+
+
+def test_from_polytopes_bad_inputs():
+    cube = mddual.ConvexPolytope(np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)]))
+    with pytest.raises(mddual.SceneError):
+        mddual.Scene.from_polytopes([], [cube], bounds=[[0, 0, 0], [1, 1, 1]])
+    with pytest.raises(ValueError, match="space: expected 'SE2', 'SE3', 'R2' or 'R3', got 'se4'"):
+        mddual.Scene.from_polytopes([cube], [], space="se4", bounds=[[0, 0, 0], [1, 1, 1]])
+    with pytest.raises(ValueError, match=r"bounds: expected a \(2, 3\) array"):
+        mddual.Scene.from_polytopes([cube], [], bounds=[0, 0, 0, 1, 1, 1])
+    with pytest.raises(mddual.InvalidInputError):  # an empty box
+        mddual.Scene.from_polytopes([cube], [], bounds=[[1, 1, 1], [0, 0, 0]])
+    with pytest.raises(mddual.InvalidInputError):  # an SE2 start off the plane
+        mddual.Scene.from_polytopes([cube], [], space="SE2", bounds=[[0, 0, 0], [5, 5, 0]],
+                                    start=translation(1.0, 1.0, 2.0))
+    with pytest.raises(TypeError):
+        mddual.Scene.from_polytopes([np.eye(3)], [], bounds=[[0, 0, 0], [1, 1, 1]])

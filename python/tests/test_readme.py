@@ -1,0 +1,35 @@
+"""The example in python/README.md runs and prints what its comments say."""
+
+import contextlib
+import io
+import pathlib
+import re
+
+README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
+
+
+def test_readme_example_runs_and_prints_its_comments():
+    text = README.read_text()
+    block = re.search(r"```python\n(.*?)```", text, re.S).group(1)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(block, str(README), "exec"), {})
+    lines = out.getvalue().splitlines()
+    assert lines[0] == "separated 2.0 [1. 0. 0.]"
+    assert lines[1:5] == ["never", "False", "1.0", "1.0"]
+    assert lines[6] == "[ 2.  1.  0. -1.  0.  1.  2.]"
+
+
+def test_readme_scene_example_runs_and_prints_its_comments(monkeypatch):
+    import mddual
+    import pytest
+
+    if not hasattr(mddual, "Scene"):
+        pytest.skip("mddual was built without the planning layer")
+    monkeypatch.chdir(README.parent.parent)  # the example's paths are relative to the repository
+    text = README.read_text()
+    block = re.findall(r"```python\n(.*?)```", text, re.S)[1]
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(block, str(README), "exec"), {"mddual": mddual})
+    assert out.getvalue().splitlines() == ["R3 [1. 5. 5.]", "True", "[ True] [0.14416667]", "[2.595]"]

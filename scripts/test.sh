@@ -30,7 +30,7 @@ cmake --build build/tsan -j "$jobs" --target test_planning_threads
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/tsan -L tsan --output-on-failure
 
 echo "== fuzzing: libFuzzer targets under address + undefined sanitizers (scripts/fuzz.sh)"
-MDDUAL_FUZZ_RUNS="${MDDUAL_FUZZ_RUNS:-10000}" ./scripts/fuzz.sh
+./scripts/fuzz.sh
 
 echo "== format"
 ./scripts/check-format.sh

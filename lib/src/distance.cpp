@@ -1,11 +1,13 @@
 // distance(): GJK on M = A - B in A's local frame with a certified stop, an
-// exhaustive feature-pair fallback, and the exact penetration depth for
-// overlapping pairs (see distance.h).
+// exact polish from the feature pairs near the supporting planes when GJK
+// stalls, and the exact penetration depth for overlapping pairs (see
+// distance.h).
 #include "mddual/distance.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "mddual/defaults.h"
 #include "mddual/penetration.h"
@@ -332,12 +334,66 @@ void closestSegmentSegment(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1,
   *pb = q0 + t * d2;
 }
 
-/// Exact distance of separated A and B from every feature pair: each vertex
-/// against each face of the other body (when its projection falls inside the
-/// face) and each edge against each edge. Points in A's local frame.
-void exhaustive(const PairGeometry& pair, Eigen::Vector3d* best_a, Eigen::Vector3d* best_b) {
+/// The features of one body near its supporting plane: the vertices within
+/// the tie tolerance of the support value, and the faces and edges incident
+/// to them (sorted, unique).
+struct FeatureSet {
+  std::vector<int> vertices;
+  std::vector<int> faces;
+  std::vector<int> edges;
+};
+
+FeatureSet featuresAround(const ConvexPolytope& body, const Eigen::Vector3d& d, int support, double tol) {
+  FeatureSet f;
+  body.supportTies(d, support, tol, &f.vertices);
+  if (f.vertices.empty()) f.vertices.push_back(support);
+  for (int v : f.vertices) {
+    for (int x : body.vertexFaces(v)) f.faces.push_back(x);
+    for (int e : body.vertexEdges(v)) f.edges.push_back(e);
+  }
+  for (std::vector<int>* list : {&f.vertices, &f.faces, &f.edges}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  return f;
+}
+
+/// Exact closest points of separated A and B (A's local frame) near the
+/// approximate closest point v_A of M, with the certified lower bound
+/// min over M of n . x (n = v / |v|) through `lower`.
+///
+/// Why the features below contain a closest pair: let a* - b* be the point of
+/// M closest to the origin, at distance d* <= |v|. With lo_A = min over A of
+/// n . a and hi_B = max over B of n . b, (n . a* - lo_A) + (hi_B - n . b*) =
+/// n . (a* - b*) - (lo_A - hi_B) <= |v| - lower =: gap, both terms >= 0. a*
+/// lies in a vertex, edge or face of A whose lowest vertex (along n) is at
+/// most n . a*, hence within gap of lo_A: a tied vertex, to which that edge
+/// or face is incident. The same holds for b* (highest vertex along n). The
+/// closest pair of two convex polytopes is a vertex-face or an edge-edge pair
+/// (vertex-vertex and vertex-edge pairs are edge-edge pairs too), so it is
+/// among: tied vertices of B x faces around A's ties, tied vertices of A x
+/// faces around B's ties, edges around A's ties x edges around B's ties. A
+/// gap this large costs more pairs, never a wrong answer.
+void polish(const PairGeometry& pair, const Eigen::Vector3d& v_A, double* lower, Eigen::Vector3d* best_a,
+            Eigen::Vector3d* best_b, DistanceStats* stats) {
   const ConvexPolytope& A = pair.a();
   const ConvexPolytope& B = pair.b();
+  SearchStats search;
+  const Eigen::Vector3d n = v_A.normalized();
+  const int va = pair.supportA(-n, -1, &search);       // lowest vertex of A along n
+  const int vb = pair.supportMinusB(-n, -1, &search);  // highest vertex of B along n
+  const double lo_a = n.dot(A.localVertex(va));
+  const double hi_b = n.dot(pair.bVertex(vb));
+  stats->support_vertices += search.support_vertices;
+  *lower = std::max(*lower, lo_a - hi_b);
+  // The round-off of the dot products (~1e-16 of the coordinates) is covered
+  // by the tie tolerance added to the gap.
+  const double tol = std::max(v_A.norm() - (lo_a - hi_b), 0.0) + pair.tieTolerance();
+  const FeatureSet fa = featuresAround(A, -n, va, tol);
+  const FeatureSet fb = featuresAround(B, pair.aToB(n), vb, tol);
+  stats->polish_pairs += static_cast<int>(fb.vertices.size() * fa.faces.size() + fa.vertices.size() * fb.faces.size() +
+                                          fa.edges.size() * fb.edges.size());
+
   double best = std::numeric_limits<double>::infinity();
   auto consider = [&](const Eigen::Vector3d& pa, const Eigen::Vector3d& pb) {
     const double d = (pa - pb).squaredNorm();
@@ -348,15 +404,15 @@ void exhaustive(const PairGeometry& pair, Eigen::Vector3d* best_a, Eigen::Vector
     }
   };
   // Vertex against face: the foot point if it lies in the face polygon.
-  auto vertexFace = [&](const ConvexPolytope& body, int f, const Eigen::Vector3d& n, auto vertexOf,
+  auto vertexFace = [&](const ConvexPolytope& body, int f, const Eigen::Vector3d& nf, auto vertexOf,
                         const Eigen::Vector3d& p, bool p_is_b) {
     const IndexRange loop = body.faceVertices(f);
     const Eigen::Vector3d p0 = vertexOf(loop[0]);
-    const Eigen::Vector3d foot = p - n.dot(p - p0) * n;
+    const Eigen::Vector3d foot = p - nf.dot(p - p0) * nf;
     for (int k = 0; k < loop.size(); ++k) {
       const Eigen::Vector3d u = vertexOf(loop[k]);
       const Eigen::Vector3d w = vertexOf(loop[(k + 1) % loop.size()]);
-      if ((w - u).cross(foot - u).dot(n) < 0.0) return;  // outside (the edge pairs cover it)
+      if ((w - u).cross(foot - u).dot(nf) < 0.0) return;  // outside (the edge pairs cover it)
     }
     if (p_is_b) {
       consider(foot, p);
@@ -366,16 +422,16 @@ void exhaustive(const PairGeometry& pair, Eigen::Vector3d* best_a, Eigen::Vector
   };
   auto aVertex = [&](int v) -> Eigen::Vector3d { return A.localVertex(v); };
   auto bVertex = [&](int v) -> Eigen::Vector3d { return pair.bVertex(v); };
-  for (int f = 0; f < A.numFaces(); ++f) {
-    for (int v = 0; v < B.numVertices(); ++v) vertexFace(A, f, A.faceNormal(f), aVertex, bVertex(v), true);
+  for (int f : fa.faces) {
+    for (int v : fb.vertices) vertexFace(A, f, A.faceNormal(f), aVertex, bVertex(v), true);
   }
-  for (int f = 0; f < B.numFaces(); ++f) {
-    const Eigen::Vector3d n = pair.bToA(B.faceNormal(f));
-    for (int v = 0; v < A.numVertices(); ++v) vertexFace(B, f, n, bVertex, aVertex(v), false);
+  for (int f : fb.faces) {
+    const Eigen::Vector3d nf = pair.bToA(B.faceNormal(f));
+    for (int v : fa.vertices) vertexFace(B, f, nf, bVertex, aVertex(v), false);
   }
-  for (int ea = 0; ea < A.numEdges(); ++ea) {
+  for (int ea : fa.edges) {
     const ConvexPolytope::Edge& x = A.edge(ea);
-    for (int eb = 0; eb < B.numEdges(); ++eb) {
+    for (int eb : fb.edges) {
       const ConvexPolytope::Edge& y = B.edge(eb);
       Eigen::Vector3d pa;
       Eigen::Vector3d pb;
@@ -408,10 +464,9 @@ DistanceResult distance(const DistanceInput& input, DistanceWarmStart* warm) {
     double dist = g.upper;
     double lower = g.lower;
     if (g.stalled) {
-      r.stats.exhaustive = true;
-      detail::exhaustive(pair, &a_A, &b_A);
+      r.stats.polished = true;
+      detail::polish(pair, g.a_A - g.b_A, &lower, &a_A, &b_A, &r.stats);
       dist = (a_A - b_A).norm();
-      lower = dist;
     }
     if (dist > pair.touchTolerance()) {
       r.status = DistanceStatus::kSeparated;

@@ -120,15 +120,16 @@ struct Tally {
   int separated = 0;
   int touching = 0;
   int penetrating = 0;
-  int exhaustive = 0;
+  int polished = 0;
+  int polish_pairs = 0;
   int fcl_compared = 0;
   double max_err_brute = 0.0;  ///< relative to the pair scale
   double max_err_fcl = 0.0;
   void print(const char* family) const {
     std::printf(
-        "[ sample   ] %s: separated %d, touching %d, penetrating %d, exhaustive fallbacks %d; "
+        "[ sample   ] %s: separated %d, touching %d, penetrating %d, polished %d (%d feature pairs); "
         "max |err| / L: brute %.3g, FCL %.3g (%d compared)\n",
-        family, separated, touching, penetrating, exhaustive, max_err_brute, max_err_fcl, fcl_compared);
+        family, separated, touching, penetrating, polished, polish_pairs, max_err_brute, max_err_fcl, fcl_compared);
   }
 };
 
@@ -145,7 +146,8 @@ void checkPair(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const Con
   const double tol = kAccuracyRel * L;
   const double brute = bruteSigned(a, X_WA, b, X_WB);
   SCOPED_TRACE(toJsonLine(DirectionalInput{&a, X_WA, &b, X_WB, Eigen::Vector3d::UnitX()}));
-  if (r.stats.exhaustive) ++tally->exhaustive;
+  if (r.stats.polished) ++tally->polished;
+  tally->polish_pairs += r.stats.polish_pairs;
   switch (r.status) {
     case DistanceStatus::kSeparated: {
       ++tally->separated;

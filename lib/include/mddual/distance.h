@@ -11,9 +11,11 @@
 // v . w / |v| on the distance (no point of M is nearer along v), and the
 // query stops when the upper bound |v| (a point of M) is within
 // defaults::kDistanceGapRel of the pair's length scale of it. If GJK cannot
-// close the gap (round-off stall), the distance is recomputed exactly from
-// every feature pair (vertex-face and edge-edge; O(mn), counted in
-// DistanceStats::exhaustive). Overlapping bodies: the penetration depth by
+// close the gap (a round-off stall, typical when the bodies nearly touch),
+// the closest points are recomputed exactly (vertex-face and edge-edge
+// pairs) among the features near the two supporting planes orthogonal to
+// GJK's direction; those provably contain a closest pair, whatever the gap
+// (distance.cpp, polish()). Overlapping bodies: the penetration depth by
 // penetrationDepth(kExact) (penetration.h).
 //
 // Units: world units. Frames: _W quantities are in the world frame.
@@ -54,7 +56,8 @@ struct DistanceInput {
 struct DistanceStats {
   int gjk_iterations = 0;    ///< GJK steps (support evaluations of M), all GJK runs of the query
   int support_vertices = 0;  ///< vertices whose support value was evaluated
-  bool exhaustive = false;   ///< GJK stalled and every feature pair was evaluated
+  bool polished = false;     ///< GJK stalled; the closest features were evaluated exactly
+  int polish_pairs = 0;      ///< feature pairs (vertex-face, edge-edge) evaluated by the polish
   bool penetration = false;  ///< penetrationDepth(kExact) was called (origin in or on M)
 };
 

@@ -467,6 +467,9 @@ DistanceResult distance(const DistanceInput& input, DistanceWarmStart* warm) {
       r.stats.polished = true;
       detail::polish(pair, g.a_A - g.b_A, &lower, &a_A, &b_A, &r.stats);
       dist = (a_A - b_A).norm();
+      // The polish evaluates a closest feature pair exactly (up to
+      // round-off): its answer is the distance, not just an upper bound.
+      lower = dist;
     }
     if (dist > pair.touchTolerance()) {
       r.status = DistanceStatus::kSeparated;

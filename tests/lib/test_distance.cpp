@@ -346,6 +346,55 @@ TEST(Distance, TouchingAndNearlyTouching) {
   EXPECT_GE(near, samples(200) / 3);
 }
 
+TEST(Distance, PolishedAnswersAreExact) {
+  // Gaps of 1e-9 .. 1e-6 of the pair's size: GJK's direction is then poor
+  // and it often stalls; the polish must give the exact distance and a
+  // lower_bound equal to it (regression: lower_bound was left at GJK's
+  // bound, 2e-9 L below the distance, on a 10x sweep). Large blobs check that
+  // the polish stays local (its feature pairs are reported).
+  Rng rng(seed(707));
+  Tally t;
+  int polished = 0;
+  for (int i = 0; i < samples(120) && !HasFailure(); ++i) {
+    const int n = i % 4 == 0 ? 150 : 30;
+    const ConvexPolytope a = ConvexPolytope::fromPoints(generators::blob(n, Eigen::Vector3d(1.0, 0.7, 0.5), rng));
+    const ConvexPolytope b = ConvexPolytope::fromPoints(generators::blob(n, Eigen::Vector3d(0.6, 1.0, 0.8), rng));
+    const Eigen::Isometry3d X_WA = randomPose(rng, 1.0);
+    Eigen::Isometry3d X_WB = randomPose(rng, 1.0);
+    X_WB.translation() += 6.0 * generators::randomUnitVector(rng);
+    const DistanceResult r = distance(DistanceInput{&a, X_WA, &b, X_WB});
+    ASSERT_EQ(r.status, DistanceStatus::kSeparated);
+    const Eigen::Vector3d c = r.p_WA - r.p_WB;
+    const double gap = std::pow(10.0, uniform(rng, -9.0, -6.0)) * pairScale(a, X_WA, b, X_WB);
+    X_WB.translation() += c - gap * c.normalized();
+    const DistanceResult r2 = distance(DistanceInput{&a, X_WA, &b, X_WB});
+    polished += r2.stats.polished ? 1 : 0;
+    checkPair(a, X_WA, b, X_WB, &t);
+  }
+  t.print("gaps of 1e-9 .. 1e-6");
+  EXPECT_GE(polished, samples(120) / 20);
+  EXPECT_GE(t.separated, samples(120) / 2);
+}
+
+TEST(Distance, ParallelFlatPolygons) {
+  // Two triangles in parallel planes: M is flat. Coplanar and overlapping:
+  // touching (no interior to penetrate); offset along the normal by h: h.
+  const ConvexPolytope tri = ConvexPolytope::fromPoints(
+      generators::triangle(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 2, 0)));
+  for (double h : {0.0, 0.5, 3.0}) {
+    for (double shift : {0.3, 5.0}) {
+      const Eigen::Isometry3d X_WB = pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(shift, 0.2, h));
+      const DistanceResult r = distance(DistanceInput{&tri, Eigen::Isometry3d::Identity(), &tri, X_WB});
+      // In the plane: overlapping for shift 0.3; for shift 5, B's corner
+      // (5, 0.2) is nearest to A's corner (2, 0).
+      const double in_plane = shift < 2.0 ? 0.0 : std::hypot(shift - 2.0, 0.2);
+      const double expected = std::hypot(h, in_plane);
+      EXPECT_NEAR(r.distance, expected, 1e-12) << "h " << h << " shift " << shift;
+      EXPECT_EQ(r.status, expected > 0.0 ? DistanceStatus::kSeparated : DistanceStatus::kTouching);
+    }
+  }
+}
+
 TEST(Distance, FarFromOrigin) {
   // Points (not poses) 1e3 .. 1e6 from the origin: the body's own frame is
   // far away, as in a world mesh.

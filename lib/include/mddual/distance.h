@@ -70,8 +70,10 @@ struct DistanceStats {
 /// | kTouching    | 0                   | a common point (|p_WB - p_WA| <= tol)   | NaN                  |
 /// | kPenetrating | -PD (<= 0, see row) | deepest pair: p_WA - p_WB = PD normal_W | unit, A toward B     |
 ///
-/// kSeparated: distance is exact to kDistanceGapRel * L; lower_bound is a
-/// certified lower bound (distance - lower_bound <= kDistanceGapRel * L).
+/// kSeparated: distance is exact to kDistanceGapRel * L; lower_bound is
+/// GJK's support-function lower bound (distance - lower_bound <=
+/// kDistanceGapRel * L), or equals distance when the polish computed it from
+/// the closest features (stats.polished).
 /// kTouching: |true distance| <= kTouchRel * L. kPenetrating: PD is the
 /// penetration depth (penetration.h, exact method): B translated by PD
 /// normal_W touches A; p_WA is a point of A and p_WB = p_WA - PD normal_W a

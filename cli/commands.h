@@ -38,6 +38,9 @@ void registerPdCommand(CLI::App& app);
 /// `mddual width`: width of a polytope per JSON line.
 void registerWidthCommand(CLI::App& app);
 
+/// `mddual distance`: separation distance (or minus the penetration depth) per JSON line.
+void registerDistanceCommand(CLI::App& app);
+
 /// `mddual bench` and `mddual bench-report`: the OMPL benchmark of a config with
 /// MDD-DUAL's and FCL's checkers (built with the planning layer only,
 /// MDDUAL_CLI_WITH_BENCH).

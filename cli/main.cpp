@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   mddual::cli::registerDemoCommand(app);
   mddual::cli::registerPdCommand(app);
   mddual::cli::registerWidthCommand(app);
+  mddual::cli::registerDistanceCommand(app);
 #ifdef MDDUAL_CLI_WITH_BENCH
   mddual::cli::registerBenchCommand(app);
 #endif

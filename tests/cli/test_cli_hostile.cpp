@@ -26,7 +26,8 @@ std::string nested(int depth) {
   return std::string(static_cast<std::size_t>(depth), '[') + std::string(static_cast<std::size_t>(depth), ']');
 }
 
-/// One line for each per-line command (query needs b and a direction, pd b).
+/// One line for each per-line command (query needs b and a direction, pd and
+/// distance b).
 std::string goodLine(const std::string& command, const std::string& id_text) {
   const Json a = cube(0.0);
   const Json b = cube(3.0);
@@ -47,7 +48,7 @@ std::string rawId(const std::string& line) {
 TEST(CliHostile, DeeplyNestedLinesAreLineErrors) {
   const std::string deep_error =
       "invalid JSON: arrays and objects nested deeper than " + std::to_string(kMaxDepth) + " levels (at byte ";
-  for (const std::string command : {"query", "pd", "width"}) {
+  for (const std::string command : {"query", "pd", "width", "distance"}) {
     SCOPED_TRACE(command);
     std::string in = goodLine(command, "\"first\"");
     in += goodLine(command, nested(kHostileDepth));  // 70,000 deep in the id
@@ -144,7 +145,7 @@ TEST(CliHostile, IdsAreEchoedExactlyAsGiven) {
                                         "{\"k\": [1, 2.50, {\"x\": null}]}",
                                         "\"caf\\u00e9 \\\"q\\\"\"",
                                         "true"};
-  for (const std::string command : {"query", "pd", "width"}) {
+  for (const std::string command : {"query", "pd", "width", "distance"}) {
     SCOPED_TRACE(command);
     std::string in;
     for (const std::string& id : ids) in += goodLine(command, id);

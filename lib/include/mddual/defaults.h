@@ -131,3 +131,22 @@ inline constexpr int kPdWalkExtraSteps = 16;
 inline constexpr double kMetricSymmetryRel = 1e-9;
 
 }  // namespace mddual::defaults
+
+// ---- Separation distance (distance.h) ---------------------------------------------
+
+namespace mddual::defaults {
+
+// GJK stops when its upper bound |v| (a point of M) and its certified lower
+// bound (v . w / |v|, w the support point of M toward the origin) differ by
+// at most kDistanceGapRel * L (L: the pair's length scale, as kTouchRel).
+// Round-off in those dot products is ~1e-15 L, so the gap closes on every
+// non-degenerate input; a GJK run that stalls above it (its support point is
+// already in its simplex) is redone exactly from every feature pair.
+inline constexpr double kDistanceGapRel = 1e-11;
+
+// Iteration cap of one GJK run. GJK on polytopes terminates in at most
+// (vertices of M) steps and usually in under 20; the cap only guards against
+// round-off cycling (the query then falls back to every feature pair).
+inline constexpr int kMaxGjkIterations = 200;
+
+}  // namespace mddual::defaults

@@ -3,6 +3,7 @@
 
 #include "mddual/brute_force.h"
 #include "mddual/defaults.h"
+#include "mddual/distance.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/penetration.h"

@@ -6,6 +6,7 @@
 
 #include "checker_arguments.h"
 #include "mddual/error.h"
+#include "mddual/planning/scene_distance.h"
 
 namespace mddual::planning {
 namespace {
@@ -44,6 +45,7 @@ MddStateValidityChecker::MddStateValidityChecker(const ob::SpaceInformationPtr& 
                                                  std::shared_ptr<const MddScene> scene)
     : ob::StateValidityChecker(si), space_(std::move(space)), scene_(std::move(scene)) {
   detail::checkCheckerArguments("MddStateValidityChecker", "scene", si, space_, scene_.get());
+  specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::EXACT;
 }
 
 bool MddStateValidityChecker::isValid(const ob::State* state) const {
@@ -54,6 +56,14 @@ bool MddStateValidityChecker::isValid(const ob::State* state) const {
   const bool hit = scene_->collides(space_->pose(state), &queries);
   counters_.addPairQueries(static_cast<std::uint64_t>(queries));
   return !hit;
+}
+
+double MddStateValidityChecker::clearance(const ob::State* state) const {
+  CheckerCounters::Timer timer(counters_);
+  counters_.addStateCheck();
+  const SceneDistance d = sceneDistance(*scene_, space_->pose(state));
+  counters_.addPairQueries(static_cast<std::uint64_t>(d.pair_queries));
+  return d.distance;
 }
 
 // ---- MddMotionValidator ----------------------------------------------------------

@@ -23,6 +23,7 @@ constexpr int kThreads = 8;
 struct Answers {
   std::vector<char> mdd_state, fcl_state, motion, fcl_motion;
   std::vector<double> last_valid, clearance;
+  std::vector<double> separation;  ///< MddStateValidityChecker::clearance (exact distance)
 };
 
 struct Workload {
@@ -58,6 +59,7 @@ Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Wo
   a.mdd_state.resize(ns);
   a.fcl_state.resize(ns);
   a.clearance.resize(ns);
+  a.separation.resize(ns);
   a.motion.resize(ne);
   a.fcl_motion.resize(ne);
   a.last_valid.resize(ne);
@@ -66,6 +68,7 @@ Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Wo
     a.mdd_state[i] = fx.mdd_checker->isValid(w.states[i].get());
     a.fcl_state[i] = fx.fcl_checker->isValid(w.states[i].get());
     a.clearance[i] = directedClearance(*fx.mdd, *fx.space, w.states[i].get(), w.directions[i]).distance;
+    a.separation[i] = fx.mdd_checker->clearance(w.states[i].get());
   }
   ob::ScopedState<> last(fx.space->stateSpace());
   for (std::size_t k = 0; k < ne; ++k) {
@@ -89,6 +92,7 @@ void expectSame(const Answers& a, const Answers& b, int thread) {
   for (std::size_t i = 0; i < a.last_valid.size(); ++i) {
     EXPECT_NEAR(a.last_valid[i], b.last_valid[i], 1e-12) << "thread " << thread << " edge " << i;
   }
+  EXPECT_EQ(a.separation, b.separation) << "thread " << thread;  // deterministic, no warm start
   for (std::size_t i = 0; i < a.clearance.size(); ++i) {
     if (std::isinf(a.clearance[i])) {
       EXPECT_EQ(a.clearance[i], b.clearance[i]) << "thread " << thread << " state " << i;

@@ -36,6 +36,14 @@ OMPL_CLASS_FORWARD(MddMotionValidator);
 /// space's bounds (si->satisfiesBounds) and no robot piece touches or overlaps
 /// a world piece at pose(s) (MddScene::collides: the broad phase's candidate
 /// pairs, each with mddual::intersect).
+///
+/// clearance(s) is exact (specs().clearanceComputationType == EXACT, so
+/// OMPL's MaximizeMinClearanceObjective and clearance-based samplers use it):
+/// sceneDistance() at pose(s) (scene_distance.h), i.e. the smallest Euclidean
+/// distance between a robot piece and a world piece when the robot is free,
+/// 0 when it only touches, minus the largest penetration depth over the
+/// overlapping pairs when it collides, +infinity in an empty world. It
+/// ignores the space's bounds.
 class MddStateValidityChecker : public ompl::base::StateValidityChecker {
  public:
   /// Throws InvalidInputError for a null argument or when si's state space is
@@ -44,6 +52,8 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
                           std::shared_ptr<const MddScene> scene);
 
   bool isValid(const ompl::base::State* state) const override;
+  /// See the class comment. Counts one state check and its pair queries.
+  double clearance(const ompl::base::State* state) const override;
 
   CheckerCounts counts() const { return counters_.read(); }
   void resetCounts() { counters_.reset(); }

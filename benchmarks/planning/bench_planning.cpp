@@ -303,8 +303,9 @@ int main(int argc, char** argv) {
   namespace ex = mddual::planning::examples;
   std::printf("## Planning checkers: MDD vs FCL (seed %llu, %d states, %d edges per kind, fastest of %d passes)\n",
               static_cast<unsigned long long>(opt.seed), opt.states, opt.edges, opt.passes);
-  for (const ex::ExampleScene& scene : {ex::primitivesScene(opt.seed), ex::meshScene(opt.seed),
-                                        ex::planarScene(opt.seed), ex::blobScene(opt.seed), ex::thinWallScene(0.05)}) {
+  for (const ex::ExampleScene& scene :
+       {ex::primitivesScene(opt.seed), ex::meshScene(opt.seed), ex::planarScene(opt.seed), ex::blobScene(opt.seed),
+        ex::thinWallScene(0.05), ex::trapScene()}) {
     if (opt.only.empty() || opt.only == scene.name) benchScene(scene, opt);
   }
   return 0;

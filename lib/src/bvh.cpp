@@ -155,6 +155,7 @@ bool sweptSphereApart(const Eigen::Vector3d& c0, double r0, const Eigen::Vector3
 /// Posed volumes of a node of the moving set, cached per query.
 struct Posed {
   Obb obb;
+  Eigen::Vector3d aabb_half;  ///< of the axis-aligned box around obb
   Eigen::Vector3d centre;
   double radius = 0.0;
 };
@@ -215,6 +216,7 @@ class PosedNodes {
     if (s_.stamp[k] != s_.generation) {
       const Bvh::Node& node = b_.node(n);
       s_.posed[k].obb = node.obb.transformed(X_AB_, margin_);
+      s_.posed[k].aabb_half = s_.posed[k].obb.aabbHalf();
       s_.posed[k].centre = X_AB_ * node.centre;
       s_.posed[k].radius = node.radius + margin_;
       s_.stamp[k] = s_.generation;
@@ -335,6 +337,27 @@ bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d&
   return true;
 }
 
+bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
+                    const Eigen::Vector3d& u, double max_s) {
+  const double slack =
+      kSatSlackRel * (magnitude(c, h) + box.min().cwiseAbs().maxCoeff() + box.max().cwiseAbs().maxCoeff());
+  double lo = 0.0, hi = max_s;
+  for (int k = 0; k < 3; ++k) {
+    // c_k + s u_k must lie in [a, b] for the boxes to overlap along axis k.
+    const double a = box.min()[k] - h[k] - slack, b = box.max()[k] + h[k] + slack;
+    if (u[k] == 0.0) {
+      if (c[k] < a || c[k] > b) return true;
+      continue;
+    }
+    double s0 = (a - c[k]) / u[k], s1 = (b - c[k]) / u[k];
+    if (s0 > s1) std::swap(s0, s1);
+    lo = std::max(lo, s0);
+    hi = std::min(hi, s1);
+    if (lo > hi) return true;
+  }
+  return false;
+}
+
 // ---- Construction --------------------------------------------------------------------
 
 Bvh::Bvh(const std::vector<std::vector<Eigen::Vector3d>>& pieces_S, const BvhOptions& options) {
@@ -453,30 +476,34 @@ int Bvh::build(std::vector<std::vector<Eigen::Vector3d>>& points, std::vector<Ei
   inner.count = count;
   inner.box = l.box.merged(r.box);
   inner.max_norm = std::max(l.max_norm, r.max_norm);
-  // Oriented box over the children's corners (so it holds both children's
-  // boxes), over candidate axes: the principal axes of the pieces' points,
-  // the children's axes, the frame's axes.
-  std::vector<Eigen::Vector3d> corners;
-  corners.reserve(16);
-  for (const Node* c : {&l, &r}) {
-    for (const Eigen::Vector3d& p : c->obb.corners()) corners.push_back(p);
-  }
+  // The volumes are fitted to the pieces' points (tighter than volumes
+  // around the children's volumes): the oriented box over candidate axes
+  // (the points' principal axes, the children's axes, the frame's axes), the
+  // sphere about the box centre or the mean, or around the children's spheres,
+  // whichever is smallest.
+  std::vector<Eigen::Vector3d> all;
   Moments m;
   for (int k = first; k < first + count; ++k) {
-    for (const Eigen::Vector3d& v : points[static_cast<std::size_t>(at(k))]) m.add(v);
+    for (const Eigen::Vector3d& v : points[static_cast<std::size_t>(at(k))]) {
+      all.push_back(v);
+      m.add(v);
+    }
   }
   std::vector<Eigen::Matrix3d> candidates{l.obb.axes_F, r.obb.axes_F};
   Eigen::Matrix3d pca;
   if (m.axes(&pca)) candidates.push_back(pca);
-  inner.obb = bestObb(corners, candidates);
+  inner.obb = bestObb(all, candidates);
   encloseSpheres(l.centre, l.radius, r.centre, r.radius, &inner.centre, &inner.radius);
+  for (const Eigen::Vector3d& c : {inner.obb.centre_F, Eigen::Vector3d(m.sum / m.n)}) {
+    double radius = 0.0;
+    for (const Eigen::Vector3d& v : all) radius = std::max(radius, (v - c).norm());
+    if (radius < inner.radius) {
+      inner.radius = radius;
+      inner.centre = c;
+    }
+  }
   inner.radius += kPadRel * (inner.centre.cwiseAbs().maxCoeff() + inner.radius);
   if (options.hull_max_pieces >= 2 && count <= options.hull_max_pieces) {
-    std::vector<Eigen::Vector3d> all;
-    for (int k = first; k < first + count; ++k) {
-      const std::vector<Eigen::Vector3d>& p = points[static_cast<std::size_t>(at(k))];
-      all.insert(all.end(), p.begin(), p.end());
-    }
     try {
       hulls_.push_back(std::make_shared<const ConvexPolytope>(ConvexPolytope::fromPoints(all)));
       inner.hull = static_cast<int>(hulls_.size()) - 1;
@@ -548,6 +575,7 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
     const Posed& pb = posed[nb];
     ++local.node_pairs;
     if (spheresApart(A.centre, A.radius, pb.centre, pb.radius)) continue;
+    if (sweptAabbApart(A.box, pb.obb.centre_F, pb.aabb_half, Eigen::Vector3d::Zero(), 0.0)) continue;
     if (obbsDisjoint(A.obb, pb.obb)) continue;
     if (A.isLeaf() && B.isLeaf()) {
       ++local.leaf_pairs;
@@ -594,6 +622,7 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
     const Posed& pb = posed[nb];
     const double lim = limit();
     if (sweptSphereApart(pb.centre, pb.radius, u, lim, A.centre, A.radius)) return kInf;
+    if (sweptAabbApart(A.box, pb.obb.centre_F, pb.aabb_half, u, lim)) return kInf;
     double lo = 0.0, hi = 0.0;
     if (!obbCastInterval(A.obb, pb.obb, u, lim, &lo, &hi)) return kInf;
     return lo;

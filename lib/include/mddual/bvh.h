@@ -6,15 +6,14 @@
 //
 // The tree: a binary tree built top down (median split of the pieces'
 // centres along the longest axis), one piece per leaf. Every node holds three
-// volumes in frame S: an axis-aligned box, an oriented box (Obb) and a
-// bounding sphere, plus the largest distance of its points from the origin of
-// S (what a rotation about that origin can move them). Invariant, which makes
-// the traversals exact: each volume of a node contains the same volume of both
-// children (not only the pieces), so a pair of leaves is reached exactly when
-// its leaf volumes overlap. Optionally, inner nodes with few pieces also hold
-// the convex hull of their pieces' vertices: the core's toi on a pair of hulls
-// is a lower bound of the toi of every pair of pieces below (a hull contains
-// its pieces), so a cast can prune with it.
+// volumes in frame S, each fitted to the points of the pieces below it: an
+// axis-aligned box (it also holds the children's boxes), an oriented box (Obb)
+// and a bounding sphere; plus the largest distance of those points from the
+// origin of S (what a rotation about that origin can move them). Optionally,
+// inner nodes with few pieces also hold the convex hull of their pieces'
+// vertices: the core's toi on a pair of hulls is a lower bound of the toi of
+// every pair of pieces below (a hull contains its pieces), so a cast can prune
+// with it.
 //
 // Thread safety: a Bvh is immutable after construction; any number of threads
 // may run queries on it at once.
@@ -44,6 +43,9 @@ struct Obb {
   Obb transformed(const Eigen::Isometry3d& X_GF, double margin = 0.0) const;
   /// The eight corners.
   std::array<Eigen::Vector3d, 8> corners() const;
+  /// Half extents of the axis-aligned box (same frame, same centre) that
+  /// holds this box.
+  Eigen::Vector3d aabbHalf() const { return axes_F.cwiseAbs() * half; }
   /// Whether p_F lies in the box grown by `tol`.
   bool contains(const Eigen::Vector3d& p_F, double tol = 0.0) const;
 };
@@ -62,6 +64,13 @@ bool obbsDisjoint(const Obb& a, const Obb& b);
 bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double* s_lo,
                      double* s_hi);
 
+/// Whether the axis-aligned box with centre c and half extents h, translated
+/// by s u for s in [0, max_s] (max_s may be +infinity; u any direction, zero
+/// for a box at rest), misses `box` (same frame) by more than the slack of
+/// obbsDisjoint: a cheap test to run before the oriented ones.
+bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
+                    const Eigen::Vector3d& u, double max_s);
+
 /// Options of a Bvh.
 struct BvhOptions {
   /// Inner nodes with at most this many pieces also get the convex hull of
@@ -73,11 +82,12 @@ struct BvhOptions {
 /// See the file comment.
 class Bvh {
  public:
-  /// One node; its volumes are in the set's frame S.
+  /// One node; its volumes are in the set's frame S and hold every point of
+  /// its pieces.
   struct Node {
-    Eigen::AlignedBox3d box;                           ///< contains the children's boxes
-    Obb obb;                                           ///< contains the children's oriented boxes
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< bounding sphere, contains the children's spheres
+    Eigen::AlignedBox3d box;  ///< also holds the children's boxes
+    Obb obb;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< bounding sphere
     double radius = 0.0;
     double max_norm = 0.0;  ///< largest |p| over the node's points (distance from the origin of S)
     int left = -1;          ///< inner node: children; leaves: -1
@@ -122,9 +132,10 @@ class Bvh {
   /// Calls fn(piece) for every piece whose leaf box meets `box_S` (closed
   /// boxes), until fn returns false. Returns false when fn stopped it.
   bool queryBox(const Eigen::AlignedBox3d& box_S, const std::function<bool(int)>& fn) const;
-  /// Calls fn(piece) for every piece whose leaf oriented box is not disjoint
-  /// from `obb_S` (obbsDisjoint), until fn returns false. Returns false when
-  /// fn stopped it.
+  /// Calls fn(piece) for the pieces whose leaf's oriented box and those of
+  /// all its ancestors are not disjoint from `obb_S` (obbsDisjoint), until fn
+  /// returns false: every piece that meets obb_S is among them. Returns false
+  /// when fn stopped it.
   bool queryObb(const Obb& obb_S, const std::function<bool(int)>& fn) const;
 
  private:
@@ -148,13 +159,11 @@ struct BvhStats {
 /// Tree against tree, with the set of b placed at X_AB in a's frame and b's
 /// volumes grown by margin_b >= 0 (each half extent and radius; a grown
 /// volume holds every point within margin_b of the volume): calls
-/// fn(piece_a, piece_b) for the pairs whose volumes overlap down to the
-/// leaves (sphere and oriented box), until fn returns false. With margin_b =
-/// 0 these are exactly the pairs whose leaf volumes overlap (each volume holds
-/// its children's). With a margin, a box grown in its own axes need not hold
-/// its children's grown boxes: the pairs are then some of those whose grown
-/// leaf volumes overlap, and always include every pair whose pieces come
-/// within margin_b of each other. Returns false when fn stopped it.
+/// fn(piece_a, piece_b) for the pairs whose volumes (sphere and oriented box)
+/// overlap at every pair of nodes on the way down to their leaves, until fn
+/// returns false. These are some of the pairs whose leaf volumes overlap, and
+/// they include every pair whose pieces come within margin_b of each other
+/// (touching included). Returns false when fn stopped it.
 bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, double margin_b,
                             const std::function<bool(int, int)>& fn, BvhStats* stats = nullptr);
 

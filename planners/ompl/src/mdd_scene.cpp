@@ -110,6 +110,8 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
     std::vector<const ConvexPolytope*> polytopes;
     polytopes.reserve(pieces.size());
     for (const scene::Piece& p : pieces) polytopes.push_back(&p.polytope);
+    // No node hulls: on the trap scene (benchmarks) their lower bounds did
+    // not pay for their core queries in translation sweeps.
     return Bvh::fromPolytopes(polytopes);
   };
   robot_tree_ = tree(robot_->pieces());

@@ -72,9 +72,10 @@
 //    finest level with fraction <= t* (the enlarged sweep holds the true
 //    motion), or left with a bound >= f and <= t*: so f <= t*, a lower bound
 //    of the first contact, never later than it. Validity only
-//    (first_contact = false): the search stops at the first finest-level
-//    contact, or when the true pieces of a pair refuted at a coarse level
-//    intersect at the middle of its interval.
+//    (first_contact = false): a pair refuted at a coarse level is refined
+//    at once, depth first, and the search stops at the first finest-level
+//    contact or when the true pieces of a refuted pair intersect at the
+//    refuted sweep's contact time (a state of the edge that collides).
 //
 // Thread safety: const methods may be called from any number of threads. Warm
 // starts are kept per thread, per (robot piece, world piece, enlargement

@@ -42,9 +42,9 @@
 //      A triple is cleared when those volumes swept by s v, s in [0, 1], miss
 //      M's volumes (an exact swept separating-axis test; spheres for a quick
 //      reject): then no piece of N touches a piece of M at any time of I.
-//      Otherwise it is split into two triples that cover it: I halved (when
-//      e is the largest of e and the two nodes' radii, or both nodes are
-//      leaves), or the larger of N and M replaced by its children. A pair of
+//      Otherwise it is split into two triples that cover it: I halved, or
+//      the larger of N and M replaced by its children (which of them is a
+//      matter of speed, not soundness: mdd_scene_rotation.cpp). A pair of
 //      leaves (robot piece i, world piece j) with e <= delta is checked with
 //      the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
 //      <= refinement_levels with delta_k >= e (enlargePieces: it holds every

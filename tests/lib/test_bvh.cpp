@@ -534,7 +534,7 @@ TEST(Bvh, BadInputIsReportedByPieceAndPoint) {
       },
       "2 poses for 1 polytopes");
   const Bvh t = Bvh::fromPolytopes({&cube});
-  const CastLeafFn none = [](int, int, double) { return kInf; };
+  const auto none = [](int, int, double) { return kInf; };
   expectMessage([&] { castFirst(t, t, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero(), 1.0, none); },
                 "direction is zero");
   expectMessage([&] { castFirst(t, t, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), -1.0, none); },

@@ -21,14 +21,38 @@
 
 #include <Eigen/Geometry>
 #include <array>
-#include <functional>
 #include <limits>
 #include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "mddual/polytope.h"
 
 namespace mddual {
+
+template <typename Signature>
+class FunctionRef;
+
+/// A non-owning reference to a callable (the callbacks of the traversals):
+/// no allocation, one indirect call. It refers to the callable it was made
+/// from, which must outlive it: pass a lambda directly as the argument, do not
+/// store a FunctionRef made from a temporary.
+template <typename R, typename... Args>
+class FunctionRef<R(Args...)> {
+ public:
+  template <typename F, typename = std::enable_if_t<!std::is_same_v<std::decay_t<F>, FunctionRef> &&
+                                                    std::is_invocable_r_v<R, F&, Args...>>>
+  FunctionRef(F&& f)  // NOLINT(google-explicit-constructor): callbacks convert implicitly
+      : object_(const_cast<void*>(static_cast<const void*>(&f))), call_([](void* object, Args... args) -> R {
+          return (*static_cast<std::remove_reference_t<F>*>(object))(std::forward<Args>(args)...);
+        }) {}
+  R operator()(Args... args) const { return call_(object_, std::forward<Args>(args)...); }
+
+ private:
+  void* object_;
+  R (*call_)(void*, Args...);
+};
 
 /// An oriented box in a frame F: the points centre_F + axes_F * y with
 /// |y_k| <= half[k]. The columns of axes_F are orthonormal.
@@ -50,11 +74,20 @@ struct Obb {
   bool contains(const Eigen::Vector3d& p_F, double tol = 0.0) const;
 };
 
+/// Slack of the volume tests, relative to the magnitude of the coordinates
+/// involved (largest |centre| plus extents): a gap must exceed it to count.
+/// More than the round-off of the projections, and more than the core's
+/// touching tolerance (1e-10 of a pair's length scale), so that a pair the
+/// core calls touching is never pruned by its volumes. Dimensionless.
+inline constexpr double kBvhSlackRel = 1e-9;
+
 /// Whether the closed boxes a and b (same frame) are disjoint: a separating
 /// axis among the 15 of the separating-axis theorem (3 + 3 face normals, 9
-/// edge-direction cross products), by more than a slack (1e-9 of the boxes'
-/// coordinates: round-off, and the core's touching tolerance). Touching boxes are not disjoint.
+/// edge-direction cross products), by more than kBvhSlackRel times the
+/// magnitude of the boxes' coordinates. Touching boxes are not disjoint.
 bool obbsDisjoint(const Obb& a, const Obb& b);
+/// The same with a given slack (absolute, world units; >= 0).
+bool obbsDisjoint(const Obb& a, const Obb& b, double slack);
 
 /// The boxes `moving` translated by s u (u any direction; s in [0, max_s],
 /// max_s may be +infinity) and `fixed` (same frame): returns false when they
@@ -63,6 +96,9 @@ bool obbsDisjoint(const Obb& a, const Obb& b);
 /// slack as obbsDisjoint: the 15 axes decide overlap at each s).
 bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double* s_lo,
                      double* s_hi);
+/// The same with a given slack (absolute; >= 0).
+bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double slack,
+                     double* s_lo, double* s_hi);
 
 /// Whether the axis-aligned box with centre c and half extents h, translated
 /// by s u for s in [0, max_s] (max_s may be +infinity; u any direction, zero
@@ -70,6 +106,9 @@ bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d&
 /// obbsDisjoint: a cheap test to run before the oriented ones.
 bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
                     const Eigen::Vector3d& u, double max_s);
+/// The same with a given slack (absolute; >= 0).
+bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
+                    const Eigen::Vector3d& u, double max_s, double slack);
 
 /// Options of a Bvh.
 struct BvhOptions {
@@ -90,7 +129,10 @@ class Bvh {
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< bounding sphere
     double radius = 0.0;
     double max_norm = 0.0;  ///< largest |p| over the node's points (distance from the origin of S)
-    int left = -1;          ///< inner node: children; leaves: -1
+    /// Magnitude of the volumes' coordinates (largest |centre| + extent):
+    /// scales the round-off slack of the tests on the node.
+    double scale = 0.0;
+    int left = -1;  ///< inner node: children; leaves: -1
     int right = -1;
     int first = 0;  ///< the node's pieces: pieceAt(first .. first + count - 1)
     int count = 0;
@@ -131,12 +173,12 @@ class Bvh {
 
   /// Calls fn(piece) for every piece whose leaf box meets `box_S` (closed
   /// boxes), until fn returns false. Returns false when fn stopped it.
-  bool queryBox(const Eigen::AlignedBox3d& box_S, const std::function<bool(int)>& fn) const;
+  bool queryBox(const Eigen::AlignedBox3d& box_S, FunctionRef<bool(int)> fn) const;
   /// Calls fn(piece) for the pieces whose leaf's oriented box and those of
   /// all its ancestors are not disjoint from `obb_S` (obbsDisjoint), until fn
   /// returns false: every piece that meets obb_S is among them. Returns false
   /// when fn stopped it.
-  bool queryObb(const Obb& obb_S, const std::function<bool(int)>& fn) const;
+  bool queryObb(const Obb& obb_S, FunctionRef<bool(int)> fn) const;
 
  private:
   int build(std::vector<std::vector<Eigen::Vector3d>>& points, std::vector<Eigen::Vector3d>& centres, int first,
@@ -165,7 +207,7 @@ struct BvhStats {
 /// they include every pair whose pieces come within margin_b of each other
 /// (touching included). Returns false when fn stopped it.
 bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, double margin_b,
-                            const std::function<bool(int, int)>& fn, BvhStats* stats = nullptr);
+                            FunctionRef<bool(int, int)> fn, BvhStats* stats = nullptr);
 
 /// Options of castFirst().
 struct CastOptions {
@@ -189,22 +231,25 @@ struct CastHit {
 /// The contact distance of one pair of pieces for castFirst(): the distance
 /// in [0, limit] at which piece_b, translating along u, first touches
 /// piece_a, or any value > limit (+infinity) when it does not within limit.
-using CastLeafFn = std::function<double(int piece_a, int piece_b, double limit)>;
+using CastLeafFn = FunctionRef<double(int piece_a, int piece_b, double limit)>;
 
 /// Branch and bound on the first contact of set b (placed at X_AB in a's
 /// frame) translating by s u_A, s in [0, max_distance] (u_A nonzero; the
 /// distance is measured along u_A / |u_A|; max_distance >= 0, may be
 /// +infinity) against set a. Node pairs are visited nearest first by a lower
-/// bound on the contact distance of every pair below them: the entry distance
-/// of their swept oriented boxes (obbCastInterval), raised to the toi of their
-/// hulls when both have one; a pair whose bound is not below the best contact
-/// so far is pruned, and the leaf function is called with limit = the best
-/// contact so far (max_distance at first). Returns the smallest leaf distance
-/// over all pairs (the same as calling leaf on every pair), or with
+/// bound on the contact distance of every pair below them: the first distance
+/// at which their swept volumes may meet (spheres, axis-aligned boxes, and the
+/// oriented boxes on their six face axes: an interval that holds the exact
+/// one of obbCastInterval, for less work), raised to the toi of their hulls
+/// when both have one; a pair whose bound is not below the best contact so far
+/// is pruned, and the leaf function is called with limit = the best contact so
+/// far (max_distance at first). Returns the smallest leaf distance over all
+/// pairs whose volumes meet within max_distance (the same as calling leaf on
+/// every pair when leaf reports only contacts of the pieces), or with
 /// first_contact = false the first one found. Throws InvalidInputError for a
 /// zero or non-finite u_A or a negative or NaN max_distance.
 CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& u_A,
-                  double max_distance, const CastLeafFn& leaf, const CastOptions& options = CastOptions(),
+                  double max_distance, CastLeafFn leaf, const CastOptions& options = CastOptions(),
                   BvhStats* stats = nullptr);
 
 }  // namespace mddual

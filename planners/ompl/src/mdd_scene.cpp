@@ -220,7 +220,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   options.first_contact = first_contact;
   // The cast keeps the smallest distance the leaf returns; the contact of
   // that pair is recorded here (same rule: strictly smaller than the best).
-  const CastLeafFn leaf = [&](int j, int i, double limit) {
+  const auto leaf = [&](int j, int i, double limit) {
     DirectionalInput in;
     in.a = &world[static_cast<std::size_t>(j)].polytope;
     in.b = &pieces[static_cast<std::size_t>(i)].polytope;

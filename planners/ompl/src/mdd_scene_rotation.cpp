@@ -16,9 +16,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// of 1 differs from EdgeMotion's rotation by about that much (see the header).
 constexpr double kGrowthSafety = 1e-6;
 constexpr double kSlerpRoundoffRel = 1e-8;
-/// Sphere rejects need a gap above this fraction of the coordinates'
-/// magnitude (round-off; the same slack as the hierarchy's own tests).
-constexpr double kSphereSlackRel = 1e-9;
 /// Which part of a triple to split: its interval is halved when e exceeds
 /// kTimeSplitAlways times the larger radius of its nodes that have children,
 /// never when e is below kTimeSplitNever times it, and in between when the
@@ -96,15 +93,15 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     const double e = growth(N, I);
     const Eigen::Vector3d c_W = I.X_WM * N.centre;
     const double r = N.radius + e;
-    const double s = I.length > 0.0 ? std::clamp((M.centre - c_W).dot(I.u_W), 0.0, I.length) : 0.0;
-    const double slack =
-        kSphereSlackRel * (c_W.cwiseAbs().maxCoeff() + M.centre.cwiseAbs().maxCoeff() + I.length + r + M.radius);
-    if ((c_W + s * I.u_W - M.centre).norm() > r + M.radius + slack) return kInf;
     const Obb box_W = N.obb.transformed(I.X_WM, e);
-    if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), I.u_W, I.length)) return kInf;
-    if (I.length == 0.0) return obbsDisjoint(M.obb, box_W) ? kInf : I.ta;
+    const double slack = kBvhSlackRel * (M.scale + I.X_WM.translation().cwiseAbs().maxCoeff() + N.scale + e + I.length);
+    const double s = I.length > 0.0 ? std::clamp((M.centre - c_W).dot(I.u_W), 0.0, I.length) : 0.0;
+    const double reach = r + M.radius + slack;
+    if ((c_W + s * I.u_W - M.centre).squaredNorm() > reach * reach) return kInf;
+    if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), I.u_W, I.length, slack)) return kInf;
+    if (I.length == 0.0) return obbsDisjoint(M.obb, box_W, slack) ? kInf : I.ta;
     double lo = 0.0, hi = 0.0;
-    if (!obbCastInterval(M.obb, box_W, I.u_W, I.length, &lo, &hi)) return kInf;
+    if (!obbCastInterval(M.obb, box_W, I.u_W, I.length, slack, &lo, &hi)) return kInf;
     return I.ta + (I.tb - I.ta) * (lo / I.length);
   };
   double best = kInf;  // smallest finest-level contact fraction found

@@ -7,16 +7,18 @@
 //
 //  - collides(X_WR): exact up to the core's touching tolerance (1e-10 of the
 //    pair's size): the robot's hierarchy posed at X_WR against the world's
-//    (mddual::Bvh, tree against tree: sphere and oriented-box tests), and
-//    every pair of pieces whose leaf volumes overlap with mddual::intersect
-//    (early escape), stopping at the first intersecting pair.
+//    (mddual::Bvh, tree against tree: sphere, axis-aligned and oriented box
+//    tests; each volume holds its node's pieces), and every pair of pieces
+//    that reaches the leaves with mddual::intersect (early escape), stopping
+//    at the first intersecting pair.
 //
 //  - sweep(X_WR, v_W): the robot translating from X_WR by s v_W, s in [0, 1]
 //    (orientation fixed). Exact: a branch and bound over pairs of nodes
-//    (mddual::castFirst), nearest first by the entry distance of their swept
-//    oriented boxes (a lower bound for every pair of pieces below), with one
-//    mddual::toi per pair of pieces it reaches, max_distance shrunk to the
-//    best contact so far; node pairs whose bound is not below it are pruned.
+//    (mddual::castFirst), nearest first by the first distance at which their
+//    swept volumes may meet (a lower bound for every pair of pieces below),
+//    with one mddual::toi per pair of pieces it reaches, max_distance shrunk
+//    to the best contact so far; node pairs whose bound is not below it are
+//    pruned.
 //    The first contact is the smallest toi over all pairs, as with a loop over
 //    every pair.
 //
@@ -35,13 +37,14 @@
 //      So with e(N, I) = (tb - ta) / 2 * angle * rho(N), the part N of the
 //      robot at time t lies inside N at orientation R(tm), placed at p(t),
 //      grown by e; p(t) = p(ta) + (t - ta) / (tb - ta) v runs along the
-//      segment v = p(tb) - p(ta). The volumes used (N's oriented box and
-//      sphere at R(tm) placed at p(ta), grown by e; the grown box holds every
-//      point within e of the box) thus hold N at every t in I when translated
-//      by s v for s = (t - ta) / (tb - ta) in [0, 1].
-//      A triple is cleared when those volumes swept by s v, s in [0, 1], miss
-//      M's volumes (an exact swept separating-axis test; spheres for a quick
-//      reject): then no piece of N touches a piece of M at any time of I.
+//      segment v = p(tb) - p(ta). The volumes used (N's oriented box, the
+//      axis-aligned box around it, and its sphere, at R(tm) placed at p(ta),
+//      grown by e; a grown box holds every point within e of the box) thus
+//      hold N at every t in I when translated by s v for s = (t - ta) / (tb -
+//      ta) in [0, 1]. A triple is cleared when one of those volumes swept by
+//      s v, s in [0, 1], misses the same volume of M (swept sphere, slab and
+//      separating-axis tests, exact for each pair of volumes): then no piece
+//      of N touches a piece of M at any time of I.
 //      Otherwise it is split into two triples that cover it: I halved, or
 //      the larger of N and M replaced by its children (which of them is a
 //      matter of speed, not soundness: mdd_scene_rotation.cpp). A pair of

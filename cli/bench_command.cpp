@@ -5,6 +5,7 @@
 // (scripts/bench_report.py). Registered only when the planning layer is built
 // (MDDUAL_CLI_WITH_BENCH).
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -33,6 +34,7 @@
 
 #include "commands.h"
 #include "mddual/error.h"
+#include "mddual/planning/bench_logs.h"
 #include "mddual/planning/bench_runner.h"
 
 extern char** environ;
@@ -43,6 +45,20 @@ namespace {
 namespace fs = std::filesystem;
 namespace mp = mddual::planning;
 using Clock = std::chrono::steady_clock;
+using mp::clipForMessage;
+
+/// Default bound on each step of the report (ompl_benchmark_statistics,
+/// scripts/bench_report.py), seconds: both take seconds on the logs of a
+/// full campaign; a step still running after 10 minutes is stuck (the
+/// statistics script loops forever on some malformed logs) and is stopped.
+constexpr double kDefaultReportTimeout = 600.0;
+/// Longer time limits are taken as this one (about 115 days): the deadline
+/// must stay within the steady clock's range.
+constexpr double kMaxReportTimeout = 1e7;
+/// How often a running step is polled, milliseconds.
+constexpr int kReportPollMs = 20;
+/// runProgram's status for a program stopped at its time limit.
+constexpr int kTimedOut = -2;
 
 struct BenchFlags {
   std::string config;
@@ -54,6 +70,7 @@ struct BenchFlags {
   std::string shard;
   std::string seed = "1";
   std::string report;
+  std::string report_timeout;
 };
 
 // ---- Small parsers (one clear line per error) --------------------------------------
@@ -67,7 +84,7 @@ long parsePositiveInt(const std::string& flag, const std::string& text) {
     used = 0;
   }
   if (used != text.size() || text.empty() || v < 1 || v > 1000000000L) {
-    throw FatalError(flag + ": '" + text + "' is not a positive integer");
+    throw FatalError(flag + ": '" + clipForMessage(text) + "' is not a positive integer");
   }
   return v;
 }
@@ -81,7 +98,7 @@ double parsePositiveReal(const std::string& flag, const std::string& text) {
     used = 0;
   }
   if (used != text.size() || text.empty() || !(v > 0.0) || !std::isfinite(v)) {
-    throw FatalError(flag + ": '" + text + "' is not a positive number");
+    throw FatalError(flag + ": '" + clipForMessage(text) + "' is not a positive number");
   }
   return v;
 }
@@ -91,11 +108,17 @@ std::vector<std::string> splitList(const std::string& flag, const std::string& t
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    if (item.empty()) throw FatalError(flag + ": empty name in '" + text + "'");
+    if (item.empty()) throw FatalError(flag + ": empty name in '" + clipForMessage(text) + "'");
     out.push_back(item);
   }
-  if (out.empty() || text.back() == ',') throw FatalError(flag + ": empty name in '" + text + "'");
+  if (out.empty() || text.back() == ',') throw FatalError(flag + ": empty name in '" + clipForMessage(text) + "'");
   return out;
+}
+
+std::string formatSeconds(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", seconds);
+  return buf;
 }
 
 std::string formatClock(double seconds) {
@@ -113,8 +136,10 @@ std::string formatClock(double seconds) {
 
 /// Runs argv[0] (searched on PATH) with argv; stdout and stderr go to `log`
 /// when given (appended), else to ours. Returns the exit status (-1: could
-/// not start or killed).
-int runProgram(const std::vector<std::string>& argv, const std::string& log = "") {
+/// not start or killed; kTimedOut: still running after `timeout` seconds,
+/// then killed).
+int runProgram(const std::vector<std::string>& argv, const std::string& log = "",
+               double timeout = kDefaultReportTimeout) {
   std::vector<std::string> args = argv;
   std::vector<char*> cargv;
   for (std::string& a : args) cargv.push_back(a.data());
@@ -131,9 +156,21 @@ int runProgram(const std::vector<std::string>& argv, const std::string& log = ""
   const int rc = posix_spawnp(&pid, cargv[0], &actions, nullptr, cargv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) return -1;
+  const Clock::time_point deadline =
+      Clock::now() +
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::min(timeout, kMaxReportTimeout)));
   int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
+  for (;;) {
+    const pid_t done = waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) return -1;
+    if (Clock::now() >= deadline) {
+      kill(pid, SIGKILL);  // the child we started, by its id
+      while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      return kTimedOut;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(kReportPollMs));
   }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -157,9 +194,10 @@ fs::path findOnPath(const std::string& name) {
 
 /// What the database and report steps need.
 struct ReportTools {
-  std::string python;      ///< a python3 with matplotlib
-  std::string statistics;  ///< OMPL's ompl_benchmark_statistics (a python script)
-  std::string script;      ///< scripts/bench_report.py
+  std::string python;                      ///< a python3 with matplotlib
+  std::string statistics;                  ///< OMPL's ompl_benchmark_statistics (a python script)
+  std::string script;                      ///< scripts/bench_report.py
+  double timeout = kDefaultReportTimeout;  ///< seconds per step
 };
 
 std::string findReportScript() {
@@ -186,7 +224,13 @@ ReportTools findReportTools() {
   ReportTools t;
   std::vector<std::string> candidates;
   const char* env = std::getenv("MDDUAL_PYTHON");
-  if (env && *env) {
+  const bool from_env = env != nullptr && *env != '\0';
+  if (from_env) {
+    if (findOnPath(env).empty()) {
+      throw FatalError("MDDUAL_PYTHON='" + clipForMessage(env) +
+                       "' is not an executable file (nor a program on PATH): set it to a python3 with matplotlib, "
+                       "or unset it to use python3 from PATH");
+    }
     candidates.emplace_back(env);  // only that one
   } else {
     candidates.emplace_back("python3");
@@ -209,7 +253,12 @@ ReportTools findReportTools() {
           "(Debian: python3 python3-matplotlib; scripts/install-deps.sh installs them)");
     }
     std::string list;
-    for (const std::string& f : found) list += (list.empty() ? "" : ", ") + f;
+    for (const std::string& f : found) list += (list.empty() ? "" : ", ") + clipForMessage(f);
+    if (from_env) {
+      throw FatalError("no python3 with matplotlib (tried " + list +
+                       ", from MDDUAL_PYTHON): it cannot import sqlite3 and matplotlib; point MDDUAL_PYTHON at "
+                       "a python3 that can, or unset it to use python3 from PATH");
+    }
     throw FatalError("no python3 with matplotlib (tried " + list +
                      "): install python3-matplotlib (scripts/install-deps.sh) or set MDDUAL_PYTHON");
   }
@@ -225,8 +274,22 @@ ReportTools findReportTools() {
   return t;
 }
 
-/// The database from `logs`, then the report: DIR/bench.db, DIR/plots/*.png,
-/// DIR/summary.md; the table goes to standard output.
+/// ompl_benchmark_statistics loops forever on a log cut off inside a block
+/// and fails with a bare traceback on most other cuts: the logs are checked
+/// before it runs.
+void checkLogs(const std::vector<fs::path>& logs) {
+  for (const fs::path& l : logs) {
+    try {
+      mp::checkBenchLog(l);
+    } catch (const InvalidInputError& e) {
+      throw FatalError(std::string("bench-report: ") + e.what());
+    }
+  }
+}
+
+/// The database from `logs` (checked by checkLogs), then the report:
+/// DIR/bench.db, DIR/plots/*.png, DIR/summary.md; the table goes to
+/// standard output.
 void buildReport(const ReportTools& tools, const fs::path& dir, const std::vector<fs::path>& logs) {
   const fs::path db = dir / "bench.db";
   const fs::path stats_log = dir / "ompl_benchmark_statistics.out";
@@ -236,7 +299,13 @@ void buildReport(const ReportTools& tools, const fs::path& dir, const std::vecto
   std::vector<std::string> argv{tools.python, tools.statistics};
   for (const fs::path& l : logs) argv.push_back(l.string());
   argv.insert(argv.end(), {"-d", db.string()});
-  if (runProgram(argv, stats_log.string()) != 0 || !fs::is_regular_file(db)) {
+  const int stats_rc = runProgram(argv, stats_log.string(), tools.timeout);
+  if (stats_rc == kTimedOut) {
+    throw FatalError("ompl_benchmark_statistics did not finish within " + formatSeconds(tools.timeout) +
+                     " s on the logs in " + dir.string() + " and was stopped (its output: " + stats_log.string() +
+                     "; a larger limit: --report-timeout / bench-report --timeout)");
+  }
+  if (stats_rc != 0 || !fs::is_regular_file(db)) {
     std::ifstream in(stats_log);
     std::string line;
     std::string last;
@@ -248,7 +317,12 @@ void buildReport(const ReportTools& tools, const fs::path& dir, const std::vecto
   }
   std::cout << "## " << dir.string() << "\n\n" << std::flush;
   const int rc = runProgram({tools.python, "-B", tools.script, "--db", db.string(), "--plots", (dir / "plots").string(),
-                             "--markdown", (dir / "summary.md").string()});
+                             "--markdown", (dir / "summary.md").string()},
+                            "", tools.timeout);
+  if (rc == kTimedOut) {
+    throw FatalError("scripts/bench_report.py did not finish within " + formatSeconds(tools.timeout) +
+                     " s and was stopped (a larger limit: --report-timeout / bench-report --timeout)");
+  }
   if (rc != 0) throw FatalError("scripts/bench_report.py failed (exit status " + std::to_string(rc) + ")");
   std::cout << "\ndatabase: " << db.string() << " (opens in Planner Arena)\n" << std::flush;
 }
@@ -376,14 +450,34 @@ class Progress {
 
 // ---- The commands -------------------------------------------------------------------
 
-void runBenchReport(const std::string& dir) {
-  const std::vector<fs::path> logs = logsIn(dir);
+/// --report-timeout / --timeout: seconds, or the default when not given.
+double reportTimeout(const std::string& flag, const std::string& text) {
+  if (text.empty()) return kDefaultReportTimeout;
+  return parsePositiveReal(flag, text);
+}
+
+void runBenchReport(const std::string& dir, double timeout) {
+  std::vector<fs::path> logs = logsIn(dir);
+  // A copied log holds the same runs: count them once.
+  std::vector<mp::DuplicateLog> copies;
+  try {
+    copies = mp::findDuplicateLogs(logs);
+  } catch (const InvalidInputError& e) {
+    throw FatalError(std::string("bench-report: ") + e.what());
+  }
+  for (const mp::DuplicateLog& d : copies) {
+    std::cerr << "bench-report: " << d.copy.filename().string() << " has the same content as "
+              << d.kept.filename().string() << ": counted once\n";
+    logs.erase(std::remove(logs.begin(), logs.end(), d.copy), logs.end());
+  }
   try {
     mp::checkShardSets(logs);
   } catch (const InvalidInputError& e) {
     throw FatalError("bench-report: " + dir + ": " + e.what());
   }
-  const ReportTools tools = findReportTools();
+  checkLogs(logs);
+  ReportTools tools = findReportTools();
+  tools.timeout = timeout;
   std::cerr << "bench-report: " << logs.size() << " logs in " << dir << "\n";
   buildReport(tools, dir, logs);
 }
@@ -391,7 +485,7 @@ void runBenchReport(const std::string& dir) {
 void runBenchCommand(const BenchFlags& f) {
   if (!f.report.empty()) {
     if (!f.config.empty()) throw FatalError("bench: give either a config file or --report DIR, not both");
-    runBenchReport(f.report);
+    runBenchReport(f.report, reportTimeout("--report-timeout", f.report_timeout));
     return;
   }
   if (f.config.empty()) throw FatalError("bench: no config file given (mddual bench CONFIG.cfg, or --report DIR)");
@@ -411,6 +505,7 @@ void runBenchCommand(const BenchFlags& f) {
   if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
   if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
   const long seed = parsePositiveInt("--seed", f.seed);
+  const double timeout = reportTimeout("--report-timeout", f.report_timeout);
 
   // OMPL's random seed before anything creates a generator (a shard's own, see shardSeed).
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
@@ -420,9 +515,11 @@ void runBenchCommand(const BenchFlags& f) {
   try {
     problem = mp::loadProblem(f.config);
     mp::selectPlanners(problem, options.planners);  // an unknown name fails now
+    mp::checkBenchProblem(problem);                 // a start or goal in collision too
   } catch (const std::exception& e) {
     throw FatalError(e.what());
   }
+  for (const std::string& w : problem.scene->warnings) std::cerr << "bench: warning: " << w << "\n";
   if (!f.output.empty()) {
     options.output_dir = f.output;
   } else if (!problem.config.output.empty()) {
@@ -433,7 +530,10 @@ void runBenchCommand(const BenchFlags& f) {
 
   // Before the long part: the database and report tools (unsharded runs).
   std::optional<ReportTools> tools;
-  if (!options.shard.sharded()) tools = findReportTools();
+  if (!options.shard.sharded()) {
+    tools = findReportTools();
+    tools->timeout = timeout;
+  }
 
   Progress progress(problem.name, static_cast<int>(options.checkers.size()));
   mp::BenchObserver observer;
@@ -463,6 +563,7 @@ void runBenchCommand(const BenchFlags& f) {
               << options.output_dir.string() << "\n";
     return;
   }
+  checkLogs(files);
   buildReport(*tools, options.output_dir, files);
 }
 
@@ -473,8 +574,10 @@ constexpr const char* kBenchFooter =
     "checker (experiment <config>-<checker>) to DIR (default out/bench/<config>/), verifies every solution\n"
     "path (exact MDD edge check with a 1e-6 rotation tolerance + dense FCL check), then builds DIR/bench.db\n"
     "(ompl_benchmark_statistics), DIR/plots/*.png and DIR/summary.md and prints the summary table.\n"
-    "--shard I/N runs runs r with r mod N = I only, seeds OMPL with seed + I and skips the report:\n"
-    "run `mddual bench-report DIR` when every shard is done. Exit status 2 for bad input.";
+    "--shard I/N runs runs r with r mod N = I only, seeds OMPL with a splitmix64 hash of (seed, I, N) and\n"
+    "skips the report: run `mddual bench-report DIR` when every shard is done. Before planning, the start and\n"
+    "goal states are checked (within the bounds, free of the world by the exact test). Exit status 2 for bad\n"
+    "input.";
 
 }  // namespace
 
@@ -486,23 +589,40 @@ void registerBenchCommand(CLI::App& app) {
   sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
   sub->add_option("--checkers", flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
       ->option_text("LIST");
-  sub->add_option("--planners", flags->planners, "comma-separated planner names of the cfg (default: all)")
+  sub->add_option("--planners", flags->planners,
+                  "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
+                  "the cfg's)")
       ->option_text("LIST");
   sub->add_option("--runs", flags->runs, "runs per planner (default: the cfg's run_count)")->option_text("N");
   sub->add_option("--time-limit", flags->time_limit, "seconds per run (default: the cfg's time_limit)")
       ->option_text("S");
   sub->add_option("--output", flags->output, "output folder (default: out/bench/<config>/)")->option_text("DIR");
   sub->add_option("--shard", flags->shard, "run only slice I of N of the runs (0 <= I < N)")->option_text("I/N");
-  sub->add_option("--seed", flags->seed, "OMPL's random seed (shard I: seed + I; default 1)")->option_text("K");
+  sub->add_option("--seed", flags->seed,
+                  "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)")
+      ->option_text("K");
   sub->add_option("--report", flags->report, "only build the database and report from the logs in DIR")
       ->option_text("DIR");
+  sub->add_option("--report-timeout", flags->report_timeout,
+                  "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
+                      formatSeconds(kDefaultReportTimeout) + ")")
+      ->option_text("S");
   sub->callback([flags] { runBenchCommand(*flags); });
 
   auto dir = std::make_shared<std::string>();
+  auto timeout = std::make_shared<std::string>();
   CLI::App* report = app.add_subcommand(
       "bench-report", "database, plots and summary table from the benchmark logs in DIR (merges shards)");
+  report->footer(
+      "Every *.log in DIR is checked first: complete OMPL benchmark logs (a log cut off is named with its line),\n"
+      "complete shard sets; a log with the same content as another (a copy) is reported and counted once.");
   report->add_option("dir", *dir, "folder with the logs of mddual bench (all shards)")->required()->option_text("DIR");
-  report->callback([dir] { runBenchReport(*dir); });
+  report
+      ->add_option("--timeout", *timeout,
+                   "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
+                       formatSeconds(kDefaultReportTimeout) + ")")
+      ->option_text("S");
+  report->callback([dir, timeout] { runBenchReport(*dir, reportTimeout("--timeout", *timeout)); });
 }
 
 }  // namespace mddual::cli

@@ -2,8 +2,11 @@
 #include "jsonl.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <new>
+#include <optional>
 
 #include "commands.h"
 #include "mddual/error.h"
@@ -15,11 +18,17 @@ bool isBlank(const std::string& line) {
   return line.find_first_not_of(" \t\r\n\f\v") == std::string::npos;
 }
 
-/// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
+bool isJsonSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
+/// nlohmann's message without its "[json.exception.parse_error.101] " prefix,
+/// clipped (its "last read: '...'" can quote a whole line).
 std::string jsonMessage(const nlohmann::json::exception& e) {
   const std::string what = e.what();
   const std::size_t close = what.find("] ");
-  return !what.empty() && what.front() == '[' && close != std::string::npos ? what.substr(close + 2) : what;
+  return clipForMessage(!what.empty() && what.front() == '[' && close != std::string::npos ? what.substr(close + 2)
+                                                                                           : what);
 }
 
 /// A short rendering of a JSON value for error messages.
@@ -30,10 +39,134 @@ std::string shortDump(const Json& value) {
   return text;
 }
 
-/// The output line for an input line, or its error.
-Json answerLine(const std::string& text, const LineHandler& handler, bool* failed) {
-  Json id = nullptr;
+/// Index of the quote closing the JSON string that opens at text[open], or
+/// text.size() if it is not closed.
+std::size_t stringEnd(const std::string& text, std::size_t open) {
+  for (std::size_t i = open + 1; i < text.size(); ++i) {
+    if (text[i] == '\\') {
+      ++i;
+    } else if (text[i] == '"') {
+      return i;
+    }
+  }
+  return text.size();
+}
+
+/// Byte offset at which `text` opens its (kMaxJsonDepth + 1)-th nested array
+/// or object (brackets inside strings do not count), or npos. Linear, no
+/// recursion: it runs before the parser sees the line.
+std::size_t tooDeepAt(const std::string& text) {
+  int depth = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {
+      i = stringEnd(text, i);
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
+/// Whether the raw JSON string `raw` (quotes included) spells "id".
+bool isIdKey(const std::string& raw) {
+  if (raw == "\"id\"") return true;
+  if (raw.find('\\') == std::string::npos) return false;
   try {
+    return Json::parse(raw) == "id";
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+/// The JSON text of the top-level "id" member of the object `text` (which
+/// parsed), as given; the last one when repeated, as the parser keeps.
+std::optional<std::string> rawIdText(const std::string& text) {
+  enum class Expect : std::uint8_t { kKey, kColon, kValue, kInValue };
+  std::optional<std::string> found;
+  Expect expect = Expect::kKey;
+  bool key_is_id = false;
+  std::size_t value_start = 0;
+  int depth = 0;
+  const auto endValue = [&](std::size_t end) {
+    if (expect == Expect::kInValue && key_is_id) {
+      std::size_t last = end;
+      while (last > value_start && isJsonSpace(text[last - 1])) --last;
+      found = text.substr(value_start, last - value_start);
+    }
+    expect = Expect::kKey;
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (isJsonSpace(c)) continue;
+    const bool top = depth == 1;
+    if (top && expect == Expect::kValue) {
+      value_start = i;
+      expect = Expect::kInValue;
+    }
+    if (c == '"') {
+      const std::size_t end = stringEnd(text, i);
+      if (top && expect == Expect::kKey) {
+        key_is_id = isIdKey(text.substr(i, end + 1 - i));
+        expect = Expect::kColon;
+      }
+      i = end;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if (c == ']' || c == '}') {
+      if (top) endValue(i);
+      --depth;
+    } else if (top && c == ':') {
+      expect = Expect::kValue;
+    } else if (top && c == ',') {
+      endValue(i);
+    }
+  }
+  return found;
+}
+
+/// The id to echo: its JSON text as given (so that integers beyond 64 bits
+/// and numbers such as 1.0 or 1e2 come back unchanged), or the parsed value
+/// written out should the text not read back as the same value.
+std::string idText(const std::string& text, const Json& id) {
+  const std::optional<std::string> raw = rawIdText(text);
+  if (raw) {
+    try {
+      if (Json::parse(*raw) == id) return *raw;
+    } catch (const nlohmann::json::exception&) {
+    }
+  }
+  return id.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+/// One output line: its id (JSON text) and the other fields, or the error.
+struct Answer {
+  std::string id = "null";
+  Json fields;
+  bool failed = false;
+};
+
+Answer failedAnswer(std::string id, const std::string& message) {
+  Answer a;
+  a.id = std::move(id);
+  a.fields = Json{{"error", message}};
+  a.failed = true;
+  return a;
+}
+
+/// The output line for an input line, or its error. Every exception ends
+/// here: a line that fails (even by running out of memory) is that line's
+/// error, and the run goes on.
+Answer answerLine(const std::string& text, const LineHandler& handler) {
+  std::string id = "null";
+  try {
+    const std::size_t deep = tooDeepAt(text);
+    if (deep != std::string::npos) {
+      throw LineError("invalid JSON: arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) +
+                      " levels (at byte " + std::to_string(deep + 1) + ")");
+    }
     Json line;
     try {
       line = Json::parse(text);
@@ -42,20 +175,34 @@ Json answerLine(const std::string& text, const LineHandler& handler, bool* faile
     }
     if (!line.is_object()) throw LineError("expected a JSON object, got " + shortDump(line));
     const auto it = line.find("id");
-    if (it != line.end()) id = *it;
-    Json out = Json::object();
-    out["id"] = id;
-    Json fields = handler(line);
-    for (auto& item : fields.items()) out[item.key()] = std::move(item.value());
-    *failed = false;
-    return out;
+    if (it != line.end()) id = idText(text, *it);
+    Answer a;
+    a.id = id;
+    a.fields = handler(line);
+    return a;
   } catch (const LineError& e) {
-    *failed = true;
-    return Json{{"id", id}, {"error", e.what()}};
+    return failedAnswer(id, e.what());
   } catch (const Error& e) {
-    *failed = true;
-    return Json{{"id", id}, {"error", e.what()}};
+    return failedAnswer(id, e.what());
+  } catch (const std::bad_alloc&) {
+    return failedAnswer(id, "out of memory while answering this line (std::bad_alloc)");
+  } catch (const std::exception& e) {
+    return failedAnswer(id, "unexpected error: " + clipForMessage(e.what()));
+  } catch (...) {
+    return failedAnswer(id, "unexpected error (unknown exception)");
   }
+}
+
+/// {"id":<id>, <fields>} on one line, compact.
+std::string outputLine(const Answer& a) {
+  std::string line = "{\"id\":" + a.id;
+  const std::string fields = a.fields.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  // fields is "{...}" or "{}" (or "null" for a handler that returned nothing).
+  if (a.fields.is_object() && fields.size() > 2)
+    line += "," + fields.substr(1);
+  else
+    line += "}";
+  return line;
 }
 
 }  // namespace
@@ -63,36 +210,52 @@ Json answerLine(const std::string& text, const LineHandler& handler, bool* faile
 JsonLinesIo::JsonLinesIo(const std::string& input_path, const std::string& output_path)
     : in_(&std::cin), out_(&std::cout) {
   if (!input_path.empty() && input_path != "-") {
+    input_name_ = "input file '" + clipForMessage(input_path) + "'";
+    std::error_code ignored;
+    // A directory opens as a stream on Linux and only fails when read.
+    if (std::filesystem::is_directory(input_path, ignored)) {
+      throw FatalError("--input '" + clipForMessage(input_path) + "' is a directory, not a file");
+    }
     file_in_.open(input_path);
-    if (!file_in_.is_open()) throw FatalError("cannot open input file '" + input_path + "'");
+    if (!file_in_.is_open()) throw FatalError("cannot open input file '" + clipForMessage(input_path) + "'");
     in_ = &file_in_;
   }
   if (!output_path.empty() && output_path != "-") {
     std::error_code ignored;
     if (file_in_.is_open() && std::filesystem::equivalent(input_path, output_path, ignored)) {
-      throw FatalError("the input and output files are the same file '" + output_path + "'");
+      throw FatalError("the input and output files are the same file '" + clipForMessage(output_path) + "'");
+    }
+    if (std::filesystem::is_directory(output_path, ignored)) {
+      throw FatalError("--output '" + clipForMessage(output_path) + "' is a directory, not a file");
     }
     file_out_.open(output_path, std::ios::out | std::ios::trunc);
-    if (!file_out_.is_open()) throw FatalError("cannot open output file '" + output_path + "'");
+    if (!file_out_.is_open()) throw FatalError("cannot open output file '" + clipForMessage(output_path) + "'");
     out_ = &file_out_;
   }
 }
 
-JsonLinesSummary runJsonLines(std::istream& in, std::ostream& out, const LineHandler& handler) {
+std::string clipForMessage(const std::string& text) {
+  if (text.size() <= kMaxQuotedChars) return text;
+  return text.substr(0, kMaxQuotedChars) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+JsonLinesSummary runJsonLines(std::istream& in, std::ostream& out, const LineHandler& handler,
+                              const std::string& input_name) {
   JsonLinesSummary summary;
   std::string text;
   long line_number = 0;
   while (std::getline(in, text)) {
     ++line_number;
     if (isBlank(text)) continue;
-    bool failed = false;
-    const Json result = answerLine(text, handler, &failed);
-    ++(failed ? summary.failed : summary.answered);
-    out << result.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    const Answer answer = answerLine(text, handler);
+    ++(answer.failed ? summary.failed : summary.answered);
+    out << outputLine(answer) << '\n';
     out.flush();
     if (!out) throw FatalError("cannot write the output (line " + std::to_string(line_number) + ")");
   }
-  if (in.bad()) throw FatalError("error reading the input after line " + std::to_string(line_number));
+  if (in.bad()) {
+    throw FatalError("error reading " + input_name + " after line " + std::to_string(line_number));
+  }
   return summary;
 }
 

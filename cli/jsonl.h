@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <fstream>
 #include <functional>
 #include <iosfwd>
@@ -44,8 +45,11 @@ class JsonLinesIo {
 
   std::istream& in() { return *in_; }
   std::ostream& out() { return *out_; }
+  /// "'<path>'" of the input file, or "standard input" (for messages).
+  const std::string& inputName() const { return input_name_; }
 
  private:
+  std::string input_name_ = "standard input";
   std::ifstream file_in_;
   std::ofstream file_out_;
   std::istream* in_;
@@ -54,7 +58,8 @@ class JsonLinesIo {
 
 /// Turns one input object into the fields of its output line (without "id",
 /// which runJsonLines() writes first). Throw LineError or any mddual::Error for
-/// a bad line.
+/// a bad line; any other exception (std::bad_alloc included) also becomes that
+/// line's error.
 using LineHandler = std::function<Json(const Json& line)>;
 
 struct JsonLinesSummary {
@@ -62,10 +67,26 @@ struct JsonLinesSummary {
   long failed = 0;    ///< lines answered with an error
 };
 
+/// Deepest nesting of arrays and objects accepted in an input line. Real
+/// inputs nest 3 deep (an array of points); writing back a deeply nested id
+/// recurses once per level, so a line nested some 70,000 deep would overflow
+/// the stack. Such a line is refused before it is parsed.
+inline constexpr int kMaxJsonDepth = 64;
+
+/// Longest user string quoted in a message (bytes); longer ones are cut with
+/// "... (N bytes)".
+inline constexpr std::size_t kMaxQuotedChars = 200;
+
+/// `text` itself, or its first kMaxQuotedChars bytes + "... (N bytes)".
+std::string clipForMessage(const std::string& text);
+
 /// Reads `in` to the end, one JSON object per line, in constant memory. Blank
 /// lines are skipped; every other line gets exactly one output line on `out`,
-/// flushed at once. Throws FatalError if writing fails.
-JsonLinesSummary runJsonLines(std::istream& in, std::ostream& out, const LineHandler& handler);
+/// flushed at once. A line's "id" is echoed as its JSON text, exactly as
+/// given. Throws FatalError if writing or reading fails (`input_name` names
+/// the input in that message).
+JsonLinesSummary runJsonLines(std::istream& in, std::ostream& out, const LineHandler& handler,
+                              const std::string& input_name = "standard input");
 
 // ---- Readers (errors are LineErrors naming the field) --------------------------
 

@@ -4,8 +4,40 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include "commands.h"
+
+namespace {
+
+/// The subcommands' names, "query, demo, ...".
+std::string subcommandNames(const CLI::App& app) {
+  std::string names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  }
+  return names;
+}
+
+/// CLI11 answers a first argument that names no subcommand with "A
+/// subcommand is required" (or "arguments were not expected"): name it and
+/// list the subcommands instead. Returns the exit status, or -1 when the first
+/// argument is a subcommand or an option.
+int unknownSubcommand(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return -1;
+  const std::string name = argv[1];
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (sub->check_name(name)) return -1;
+  }
+  std::string shown = name;
+  constexpr std::size_t kMaxShown = 200;  // bytes of a user string quoted in a message
+  if (shown.size() > kMaxShown) shown = shown.substr(0, kMaxShown) + "... (" + std::to_string(name.size()) + " bytes)";
+  std::cerr << "mddual: unknown subcommand '" << shown << "' (subcommands: " << subcommandNames(app)
+            << "; mddual --help describes them)\n";
+  return static_cast<int>(CLI::ExitCodes::ExtrasError);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
@@ -18,6 +50,8 @@ int main(int argc, char** argv) {
 #ifdef MDDUAL_CLI_WITH_BENCH
   mddual::cli::registerBenchCommand(app);
 #endif
+  const int unknown = unknownSubcommand(app, argc, argv);
+  if (unknown >= 0) return unknown;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

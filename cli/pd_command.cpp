@@ -18,7 +18,8 @@ namespace {
 
 struct PdOptions {
   std::string method = "exact";
-  double delta = 0.0;
+  std::string delta;  ///< as given (empty: the method's default)
+  bool delta_given = false;
   std::string input;
   std::string output;
 };
@@ -82,11 +83,12 @@ Json answerPd(const Json& line, PenetrationMethod method, double delta) {
 }
 
 void runPd(const PdOptions& options) {
-  JsonLinesIo io(options.input, options.output);
+  // Options first: a usage error must not truncate the output file.
   const PenetrationMethod method = methodFromName(options.method);
-  const double delta = options.delta;
-  const JsonLinesSummary summary =
-      runJsonLines(io.in(), io.out(), [method, delta](const Json& line) { return answerPd(line, method, delta); });
+  const double delta = deltaOption(options.delta, options.delta_given, method, options.method);
+  JsonLinesIo io(options.input, options.output);
+  const JsonLinesSummary summary = runJsonLines(
+      io.in(), io.out(), [method, delta](const Json& line) { return answerPd(line, method, delta); }, io.inputName());
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 
@@ -119,15 +121,18 @@ void registerPdCommand(CLI::App& app) {
       ->check(CLI::IsMember({"exact", "shallow", "approx", "brute"}))
       ->capture_default_str();
   sub->add_option("--delta", options->delta,
-                  "accuracy of approx / shallow (default " + std::to_string(defaults::kApproxPdDelta) + " / " +
-                      std::to_string(defaults::kShallowPdDelta) + ")")
-      ->check(CLI::Range(defaults::kMinPdDelta, defaults::kMaxPdDelta))
+                  "accuracy of approx / shallow: default " + formatNumber(defaults::kApproxPdDelta) + " / " +
+                      formatNumber(defaults::kShallowPdDelta) + ", range " + deltaRange(PenetrationMethod::kApprox) +
+                      " / " + deltaRange(PenetrationMethod::kShallow) + " (exact, brute: ignored)")
       ->option_text("D");
   sub->add_option("--input", options->input, "read pairs from FILE (default or -: standard input)")
       ->option_text("FILE");
   sub->add_option("--output", options->output, "write answers to FILE (default or -: standard output)")
       ->option_text("FILE");
-  sub->callback([options] { runPd(*options); });
+  sub->callback([options, sub] {
+    options->delta_given = sub->count("--delta") > 0;
+    runPd(*options);
+  });
 }
 
 }  // namespace mddual::cli

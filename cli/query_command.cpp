@@ -55,8 +55,8 @@ Json answerQuery(const Json& line, bool brute) {
 void runQuery(const QueryOptions& options) {
   JsonLinesIo io(options.input, options.output);
   const bool brute = options.method == "brute";
-  const JsonLinesSummary summary =
-      runJsonLines(io.in(), io.out(), [brute](const Json& line) { return answerQuery(line, brute); });
+  const JsonLinesSummary summary = runJsonLines(
+      io.in(), io.out(), [brute](const Json& line) { return answerQuery(line, brute); }, io.inputName());
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 

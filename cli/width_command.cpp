@@ -16,7 +16,8 @@ namespace {
 
 struct WidthOptions {
   std::string method = "exact";
-  double delta = 0.0;
+  std::string delta;  ///< as given (empty: the method's default)
+  bool delta_given = false;
   std::string input;
   std::string output;
 };
@@ -40,11 +41,13 @@ Json answerWidth(const Json& line, PenetrationMethod method, double delta) {
 }
 
 void runWidth(const WidthOptions& options) {
-  JsonLinesIo io(options.input, options.output);
+  // Options first: a usage error must not truncate the output file.
   const PenetrationMethod method = methodFromName(options.method);
-  const double delta = options.delta;
-  const JsonLinesSummary summary =
-      runJsonLines(io.in(), io.out(), [method, delta](const Json& line) { return answerWidth(line, method, delta); });
+  const double delta = deltaOption(options.delta, options.delta_given, method, options.method);
+  JsonLinesIo io(options.input, options.output);
+  const JsonLinesSummary summary = runJsonLines(
+      io.in(), io.out(), [method, delta](const Json& line) { return answerWidth(line, method, delta); },
+      io.inputName());
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 
@@ -72,14 +75,17 @@ void registerWidthCommand(CLI::App& app) {
       ->check(CLI::IsMember({"exact", "approx", "brute"}))
       ->capture_default_str();
   sub->add_option("--delta", options->delta,
-                  "accuracy of approx (default " + std::to_string(defaults::kApproxPdDelta) + ")")
-      ->check(CLI::Range(defaults::kMinPdDelta, defaults::kMaxPdDelta))
+                  "accuracy of approx: default " + formatNumber(defaults::kApproxPdDelta) + ", range " +
+                      deltaRange(PenetrationMethod::kApprox) + " (exact, brute: ignored)")
       ->option_text("D");
   sub->add_option("--input", options->input, "read polytopes from FILE (default or -: standard input)")
       ->option_text("FILE");
   sub->add_option("--output", options->output, "write answers to FILE (default or -: standard output)")
       ->option_text("FILE");
-  sub->callback([options] { runWidth(*options); });
+  sub->callback([options, sub] {
+    options->delta_given = sub->count("--delta") > 0;
+    runWidth(*options);
+  });
 }
 
 }  // namespace mddual::cli

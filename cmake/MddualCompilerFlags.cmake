@@ -19,5 +19,20 @@ if(MDDUAL_SANITIZE)
   target_link_options(mddual_build_flags INTERFACE -fsanitize=${_mddual_san})
 endif()
 
+# Fuzzing (fuzz/): every mddual target gets libFuzzer's coverage
+# instrumentation and ASan + UBSan; the fuzz executables add the libFuzzer
+# driver (-fsanitize=fuzzer).
+if(MDDUAL_BUILD_FUZZERS)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "MDDUAL_BUILD_FUZZERS needs Clang (CXX=clang++; Debian packages clang and libclang-rt-14-dev)")
+  endif()
+  if(MDDUAL_SANITIZE)
+    message(FATAL_ERROR "MDDUAL_BUILD_FUZZERS brings its own sanitizers: leave MDDUAL_SANITIZE empty")
+  endif()
+  target_compile_options(mddual_build_flags INTERFACE
+    -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(mddual_build_flags INTERFACE -fsanitize=address,undefined)
+endif()
+
 # Use as: target_link_libraries(tgt PRIVATE $<BUILD_INTERFACE:mddual_build_flags>)
 # (BUILD_INTERFACE keeps the flags out of the exported package).

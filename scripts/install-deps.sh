@@ -12,6 +12,7 @@ packages=(
   libompl-dev ompl-demos liburdfdom-dev libassimp-dev
   libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   python3 python3-matplotlib
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -3,7 +3,8 @@
 #   1. Release build of everything, all ctest tests (core, CLI, install);
 #   2. the core tests again under AddressSanitizer + UndefinedBehaviorSanitizer;
 #   3. the OMPL layer's concurrency test under ThreadSanitizer;
-#   4. the clang-format check.
+#   4. the libFuzzer targets, a fixed number of executions each (scripts/fuzz.sh);
+#   5. the clang-format check.
 # Set MDDUAL_JOBS to change the parallelism (default: all cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,6 +28,9 @@ cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE=thr
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/tsan -j "$jobs" --target test_planning_threads
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/tsan -L tsan --output-on-failure
+
+echo "== fuzzing: libFuzzer targets under address + undefined sanitizers (scripts/fuzz.sh)"
+MDDUAL_FUZZ_RUNS="${MDDUAL_FUZZ_RUNS:-10000}" ./scripts/fuzz.sh
 
 echo "== format"
 ./scripts/check-format.sh

@@ -119,12 +119,22 @@ Eigen::Vector3d decompose(const MinkowskiDifference& md, const std::vector<Eigen
 
 MinkowskiDifference MinkowskiDifference::build(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA,
                                                const ConvexPolytope& b, const Eigen::Isometry3d& X_WB) {
+  // d_W = a_W - b_W for every pair of vertices, formed from the local frames
+  // (polytope.h) so that bodies far from the origin keep their precision:
+  //   d_W = R_WA a_L - R_WB b_L + (p_WLa - p_WLb),
+  // the last term (two nearly equal large vectors) in long double.
+  using Vec3L = Eigen::Matrix<long double, 3, 1>;
+  const Vec3L p_WLa =
+      X_WA.translation().cast<long double>() + X_WA.linear().cast<long double>() * a.p_PL().cast<long double>();
+  const Vec3L p_WLb =
+      X_WB.translation().cast<long double>() + X_WB.linear().cast<long double>() * b.p_PL().cast<long double>();
+  const Eigen::Vector3d p_LbLa_W = (p_WLa - p_WLb).cast<double>();
   std::vector<Eigen::Vector3d> points;
   std::map<std::array<double, 3>, std::pair<int, int>> source_of;
   for (int i = 0; i < a.numVertices(); ++i) {
-    const Eigen::Vector3d p = X_WA * a.vertex(i);
+    const Eigen::Vector3d p = X_WA.linear() * a.localVertex(i) + p_LbLa_W;
     for (int j = 0; j < b.numVertices(); ++j) {
-      const Eigen::Vector3d d = p - X_WB * b.vertex(j);
+      const Eigen::Vector3d d = p - X_WB.linear() * b.localVertex(j);
       points.push_back(d);
       source_of.emplace(std::array<double, 3>{d.x(), d.y(), d.z()}, std::make_pair(i, j));
     }
@@ -199,7 +209,7 @@ MddResult BruteForce::mdd(const Eigen::Vector3d& s_W) const {
 }
 
 ToiResult BruteForce::toi(const Eigen::Vector3d& s_W, double max_distance) const {
-  if (std::isnan(max_distance)) throw InvalidInputError("toi (brute force): max_distance is NaN");
+  detail::checkMaxDistance(max_distance, "toi (brute force)");
   const Line ans = solve(s_W, "toi (brute force)");
   ToiResult r;
   if (!ans.line.hit || ans.line.t_hi < -tol_) return r;

@@ -11,6 +11,12 @@ namespace {
 void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) {
   const Eigen::Matrix3d& R = X.linear();
   const bool finite = R.allFinite() && X.translation().allFinite();
+  if (finite && X.translation().cwiseAbs().maxCoeff() > defaults::kMaxCoordinate) {
+    std::ostringstream msg;
+    msg << query << ": pose " << name << " has a translation beyond " << defaults::kMaxCoordinate
+        << " in magnitude (out of the supported range)";
+    throw InvalidInputError(msg.str());
+  }
   const bool rotation =
       finite && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0;
   if (!rotation) {
@@ -28,10 +34,26 @@ PairGeometry::PairGeometry(const ConvexPolytope* a, const Eigen::Isometry3d& X_W
       X_WA_(X_WA) {
   checkPose(X_WA, "X_WA", query);
   checkPose(X_WB, "X_WB", query);
-  const Eigen::Isometry3d X_AB = X_WA.inverse() * X_WB;
-  R_AB_ = X_AB.linear();
-  p_AB_ = X_AB.translation();
-  g_A_ = a_.centroid() - (R_AB_ * b_.centroid() + p_AB_);
+  // The pair is evaluated in A's local frame (polytope.h): "A's frame" below
+  // and in every _A name of the core means that frame. X_WA_ = X_WA X_PL(A).
+  // B's local frame relative to it:
+  //   R_AB = R_WA^T R_WB,  p_AB = R_WA^T (t_WB + R_WB p_PL(B) - t_WA - R_WA p_PL(A)).
+  // The translation subtracts nearly equal large numbers when both bodies are
+  // far from the world origin; in long double (64-bit mantissa on x86-64) the
+  // cancellation costs 2^11 times less than in double, so p_AB keeps the
+  // bodies' relative position to about 1e-19 of their distance from the
+  // origin. With identity poses (bodies given in world coordinates) it is
+  // exact: the difference of the two local origins.
+  using Vec3L = Eigen::Matrix<long double, 3, 1>;
+  using Mat3L = Eigen::Matrix<long double, 3, 3>;
+  const Mat3L R_WA = X_WA.linear().cast<long double>();
+  const Mat3L R_WB = X_WB.linear().cast<long double>();
+  const Vec3L p_WLa = X_WA.translation().cast<long double>() + R_WA * a_.p_PL().cast<long double>();
+  const Vec3L p_WLb = X_WB.translation().cast<long double>() + R_WB * b_.p_PL().cast<long double>();
+  X_WA_.translation() = p_WLa.cast<double>();
+  R_AB_ = (R_WA.transpose() * R_WB).cast<double>();
+  p_AB_ = (R_WA.transpose() * (p_WLb - p_WLa)).cast<double>();
+  g_A_ = a_.localCentroid() - (R_AB_ * b_.localCentroid() + p_AB_);
   scale_ = std::max({a_.radius(), b_.radius(), g_A_.norm()});
   if (a_.isFlat() && b_.isFlat()) {
     const Eigen::Vector3d nb_A = R_AB_ * b_.faceNormal(0);
@@ -60,8 +82,17 @@ MPoint PairGeometry::supportM(const Eigen::Vector3d& d_A, int hint_a, int hint_b
   MPoint m;
   m.va = supportA(d_A, hint_a, stats);
   m.vb = supportMinusB(d_A, hint_b, stats);
-  m.p_A = a_.vertex(m.va) - bVertex(m.vb);
+  m.p_A = a_.localVertex(m.va) - bVertex(m.vb);
   return m;
+}
+
+void checkMaxDistance(double max_distance, const char* query) {
+  if (!(max_distance >= 0.0)) {
+    std::ostringstream msg;
+    msg.precision(17);
+    msg << query << ": max_distance " << max_distance << " must be >= 0 (or +infinity)";
+    throw InvalidInputError(msg.str());
+  }
 }
 
 Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query) {

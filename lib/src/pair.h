@@ -1,6 +1,12 @@
 // The pair (A, B) seen from A's frame: B's pose relative to A, support
 // queries on M = A - B, and the length scale that makes tolerances relative.
 // All vectors here are in A's frame (suffix _A) unless named otherwise.
+//
+// "A's frame" is A's LOCAL frame (ConvexPolytope::p_PL(): the body frame
+// translated to the centre of A's points), and B's vertices enter through
+// B's local frame too: the core only ever reads localVertex(),
+// localFaceOffset() and localCentroid(), so that M = A - B is formed from
+// coordinates of the bodies' own size, wherever they are.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -27,10 +33,11 @@ class PairGeometry {
 
   const ConvexPolytope& a() const { return a_; }
   const ConvexPolytope& b() const { return b_; }
+  /// Pose of A's local frame in the world (X_WA X_PL).
   const Eigen::Isometry3d& X_WA() const { return X_WA_; }
 
   /// Vertex v of B, in A's frame.
-  Eigen::Vector3d bVertex(int v) const { return R_AB_ * b_.vertex(v) + p_AB_; }
+  Eigen::Vector3d bVertex(int v) const { return R_AB_ * b_.localVertex(v) + p_AB_; }
   /// A vector of B's frame expressed in A's frame.
   Eigen::Vector3d bToA(const Eigen::Vector3d& v_B) const { return R_AB_ * v_B; }
   /// A vector of A's frame expressed in B's frame.
@@ -76,6 +83,11 @@ class PairGeometry {
   bool flat_m_ = false;
   Eigen::Vector3d flat_normal_A_ = Eigen::Vector3d::Zero();
 };
+
+/// Checks a toi() max_distance: >= 0 (0 asks about the start only) or
+/// +infinity; NaN and negative values are InvalidInputError (the same rule as
+/// the planning layer's directed clearance).
+void checkMaxDistance(double max_distance, const char* query);
 
 /// Checks a direction (finite, nonzero) and returns it normalised; `query`
 /// names the caller in the error.

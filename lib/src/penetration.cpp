@@ -95,6 +95,15 @@ PdPlane closestFacet(const PairGeometry& pair, PenetrationMethod method, double 
   }
 }
 
+/// Whether the plane n . x = h of M (A's frame) supports M: h_A(n) +
+/// h_-B(n) = h within the touch tolerance.
+bool supportsM(const PairGeometry& pair, const PdPlane& p, PenetrationStats* stats) {
+  SearchStats s;
+  const detail::MPoint m = pair.supportM(p.n_A, p.va, p.vb, &s);
+  stats->support_vertices += s.support_vertices;
+  return p.n_A.dot(m.p_A) <= p.h + pair.touchTolerance();
+}
+
 /// The closest facet of the explicit M (world frame; features unknown).
 PdPlane bruteClosestFacet(const BruteForce& brute) {
   const ConvexPolytope& m = brute.minkowskiDifference().polytope;
@@ -156,7 +165,18 @@ PenetrationResult penetrationDepth(const PenetrationInput& input) {
     if (r.status != PenetrationStatus::kPenetrating || pair.flatM()) return r;
     // 3. The closest facet of M by the chosen method (A's frame).
     const PdPlane p = closestFacet(pair, input.method, delta, &r.stats);
-    // 4. Result in the world frame.
+    // 4. Check (exact method): the plane must support M, h_M(n) = h. In exact
+    //    arithmetic every enumerated plane does; an edge-edge normal computed
+    //    from edges that are parallel to within ~1e-6 can be off by round-off
+    //    / sine. Two support queries catch that; the explicit M then answers.
+    if (input.method == PenetrationMethod::kExact && !supportsM(pair, p, &r.stats)) {
+      ++r.stats.brute_fallbacks;
+      const BruteForce brute(input.a, input.X_WA, input.b, input.X_WB);
+      const PdPlane q = bruteClosestFacet(brute);
+      finish(q, q.n_A, pair.touchTolerance(), &r);
+      return r;
+    }
+    // 5. Result in the world frame.
     finish(p, pair.vectorToWorld(p.n_A), pair.touchTolerance(), &r);
   } catch (const NumericalError& e) {
     rethrowWithPair(e, input.a, input.X_WA, input.b, input.X_WB);
@@ -294,6 +314,13 @@ WidthResult width(const WidthInput& input) {
       p.n_A = pair.vectorToA(p.n_A);
     } else {
       p = closestFacet(pair, input.method, delta, &r.stats);
+      // The same final check as penetrationDepth() step 4.
+      if (input.method == PenetrationMethod::kExact && !supportsM(pair, p, &r.stats)) {
+        ++r.stats.brute_fallbacks;
+        const BruteForce brute(input.a, input.X_WA, input.a, input.X_WA);
+        p = bruteClosestFacet(brute);
+        p.n_A = pair.vectorToA(p.n_A);
+      }
     }
     // 4. Result.
     r.width = p.h;

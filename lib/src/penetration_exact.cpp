@@ -145,7 +145,7 @@ class ExactEnumerator {
     const IndexRange nbrs = b_.vertexNeighbors(v);
     for (int k = 0; k < nbrs.size(); ++k) {
       const size_t i = static_cast<size_t>(nbrs.begin() + k - nbr_base_);
-      edge_A_[i] = pair_.bToA(b_.vertex(nbrs[k]) - b_.vertex(v));
+      edge_A_[i] = pair_.bToA(b_.localVertex(nbrs[k]) - b_.localVertex(v));
       parallel2_[i] = defaults::kParallelSin * defaults::kParallelSin * edge_A_[i].squaredNorm();
     }
   }
@@ -159,12 +159,12 @@ class ExactEnumerator {
   void offerFV(int f, int vb) {
     ++stats_->fv_facets;
     const Eigen::Vector3d& n = a_.faceNormal(f);
-    offer(FaceOfM::Kind::kFV, f, vb, n, a_.faceOffset(f) - n.dot(bA(vb)), a_.faceVertices(f)[0], vb);
+    offer(FaceOfM::Kind::kFV, f, vb, n, a_.localFaceOffset(f) - n.dot(bA(vb)), a_.faceVertices(f)[0], vb);
   }
   void offerVF(int g, int va) {
     ++stats_->vf_facets;
     const Eigen::Vector3d n = -pair_.bToA(b_.faceNormal(g));
-    offer(FaceOfM::Kind::kVF, va, g, n, n.dot(a_.vertex(va)) + b_.faceOffset(g) - n.dot(pair_.p_AB()), va,
+    offer(FaceOfM::Kind::kVF, va, g, n, n.dot(a_.localVertex(va)) + b_.localFaceOffset(g) - n.dot(pair_.p_AB()), va,
           b_.faceVertices(g)[0]);
   }
   int supportMinusB(const Eigen::Vector3d& n, int hint) {
@@ -214,8 +214,8 @@ PdPlane ExactEnumerator::branchAndBound() {
   // by walking the arcs as in enumerateAll(), so the minimum is PD.
   const int m = a_.numFaces();
   const int n = b_.numFaces();
-  const Eigen::Vector3d c_B = a_.centroid() - pair_.interiorPoint();  // B's centroid, A's frame
-  const Eigen::Vector3d c_A_in_B = pair_.aToB(a_.centroid() - pair_.p_AB());
+  const Eigen::Vector3d c_B = a_.localCentroid() - pair_.interiorPoint();  // B's centroid, A's frame
+  const Eigen::Vector3d c_A_in_B = pair_.aToB(a_.localCentroid() - pair_.p_AB());
   const double slack = pair_.tieTolerance();
   // FV bounds without rho_B (fv_base), VF bounds without rho_A; the radii
   // come out of the same loops.
@@ -231,8 +231,8 @@ PdPlane ExactEnumerator::branchAndBound() {
   int seed_vf = 0;
   for (int f = 0; f < m; ++f) {
     const Eigen::Vector3d& nf = a_.faceNormal(f);
-    const double base = a_.faceOffset(f) - nf.dot(c_B);
-    rho_A = std::min(rho_A, a_.faceOffset(f) - nf.dot(a_.centroid()));
+    const double base = a_.localFaceOffset(f) - nf.dot(c_B);
+    rho_A = std::min(rho_A, a_.localFaceOffset(f) - nf.dot(a_.localCentroid()));
     fv_base[static_cast<size_t>(f)] = base;
     if (base < min_fv) {
       min_fv = base;
@@ -241,8 +241,8 @@ PdPlane ExactEnumerator::branchAndBound() {
   }
   for (int g = 0; g < n; ++g) {
     const Eigen::Vector3d& ng = b_.faceNormal(g);
-    const double base = b_.faceOffset(g) - ng.dot(c_A_in_B);
-    rho_B = std::min(rho_B, b_.faceOffset(g) - ng.dot(b_.centroid()));
+    const double base = b_.localFaceOffset(g) - ng.dot(c_A_in_B);
+    rho_B = std::min(rho_B, b_.localFaceOffset(g) - ng.dot(b_.localCentroid()));
     vf_base[static_cast<size_t>(g)] = base;
     if (base < min_vf) {
       min_vf = base;
@@ -288,7 +288,7 @@ PdPlane ExactEnumerator::branchAndBound() {
     double low = std::min(fv_base[static_cast<size_t>(edge.face_left)], fv_base[static_cast<size_t>(edge.face_right)]);
     if (centre_in_a && low + rho_B >= cut) continue;
     if (!centre_in_a) {
-      const Eigen::Vector3d q = a_.vertex(edge.v0) - c_B;
+      const Eigen::Vector3d q = a_.localVertex(edge.v0) - c_B;
       const Eigen::Vector3d q_perp = q - q.dot(edge.dir_P) * edge.dir_P;
       const double norm = q_perp.norm();
       if (norm > 0.0 && -q_perp.dot(edge.wedge_left_P) >= 0.0 && -q_perp.dot(edge.wedge_right_P) >= 0.0) low = -norm;
@@ -359,7 +359,7 @@ int ExactEnumerator::walkArc(int e, int from_face, int vb) {
   const bool forward = from_face == edge.face_left;
   const Eigen::Vector3d dir = forward ? edge.dir_P : Eigen::Vector3d(-edge.dir_P);
   const Eigen::Vector3d& n_end = a_.faceNormal(forward ? edge.face_right : edge.face_left);
-  const Eigen::Vector3d& a0 = a_.vertex(edge.v0);
+  const Eigen::Vector3d& a0 = a_.localVertex(edge.v0);
   Eigen::Vector3d x = a_.faceNormal(from_face);
   Eigen::Vector3d tau = dir.cross(x);
   // A geodesic arc (at most a half circle) enters each convex region of -B's
@@ -416,7 +416,7 @@ int ExactEnumerator::walkArcByTesting(int e, int from_face, int vb_hint) {
   // wedge tests), then the end region by a support query.
   ++stats_->walk_fallbacks;
   const ConvexPolytope::Edge& ea = a_.edge(e);
-  const Eigen::Vector3d& a0 = a_.vertex(ea.v0);
+  const Eigen::Vector3d& a0 = a_.localVertex(ea.v0);
   for (int j = 0; j < b_.numEdges(); ++j) {
     const ConvexPolytope::Edge& eb = b_.edge(j);
     const Eigen::Vector3d x = ea.dir_P.cross(pair_.bToA(eb.dir_P));

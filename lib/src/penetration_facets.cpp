@@ -45,12 +45,14 @@ FacetGraph::FacetGraph(const PairGeometry& pair, PenetrationStats* stats)
     : pair_(pair), stats_(stats), edges_b_(static_cast<size_t>(pair.b().numEdges())) {
   const ConvexPolytope& a = pair.a();
   const ConvexPolytope& b = pair.b();
-  c_B_ = a.centroid() - pair.interiorPoint();
-  c_A_in_B_ = pair.aToB(a.centroid() - pair.p_AB());
+  c_B_ = a.localCentroid() - pair.interiorPoint();
+  c_A_in_B_ = pair.aToB(a.localCentroid() - pair.p_AB());
   rho_A_ = std::numeric_limits<double>::infinity();
   rho_B_ = std::numeric_limits<double>::infinity();
-  for (int f = 0; f < a.numFaces(); ++f) rho_A_ = std::min(rho_A_, a.faceOffset(f) - a.faceNormal(f).dot(a.centroid()));
-  for (int g = 0; g < b.numFaces(); ++g) rho_B_ = std::min(rho_B_, b.faceOffset(g) - b.faceNormal(g).dot(b.centroid()));
+  for (int f = 0; f < a.numFaces(); ++f)
+    rho_A_ = std::min(rho_A_, a.localFaceOffset(f) - a.faceNormal(f).dot(a.localCentroid()));
+  for (int g = 0; g < b.numFaces(); ++g)
+    rho_B_ = std::min(rho_B_, b.localFaceOffset(g) - b.faceNormal(g).dot(b.localCentroid()));
   rho_A_ = std::max(rho_A_, 0.0);
   rho_B_ = std::max(rho_B_, 0.0);
 }
@@ -61,15 +63,15 @@ double FacetGraph::lowerBound(const FaceOfM& face) const {
   const ConvexPolytope& a = pair_.a();
   const ConvexPolytope& b = pair_.b();
   if (face.kind == FaceOfM::Kind::kFV && face.a >= 0 && face.a < a.numFaces()) {
-    return a.faceOffset(face.a) - a.faceNormal(face.a).dot(c_B_) + rho_B_;
+    return a.localFaceOffset(face.a) - a.faceNormal(face.a).dot(c_B_) + rho_B_;
   }
   if (face.kind == FaceOfM::Kind::kVF && face.b >= 0 && face.b < b.numFaces()) {
-    return b.faceOffset(face.b) - b.faceNormal(face.b).dot(c_A_in_B_) + rho_A_;
+    return b.localFaceOffset(face.b) - b.faceNormal(face.b).dot(c_A_in_B_) + rho_A_;
   }
   if (face.kind == FaceOfM::Kind::kEE && face.a >= 0 && face.a < a.numEdges()) {
     // rho_B + min over the arc of edge a of n . (a - c_B).
     const ConvexPolytope::Edge& edge = a.edge(face.a);
-    const Eigen::Vector3d q = a.vertex(edge.v0) - c_B_;
+    const Eigen::Vector3d q = a.localVertex(edge.v0) - c_B_;
     double low = std::min(q.dot(a.faceNormal(edge.face_left)), q.dot(a.faceNormal(edge.face_right)));
     const Eigen::Vector3d q_perp = q - q.dot(edge.dir_P) * edge.dir_P;
     const double norm = q_perp.norm();
@@ -93,7 +95,7 @@ const FacetGraph::EdgeInA& FacetGraph::edgeInA(int e, bool of_b) {
     x.dir = edge.dir_P;
     x.wedge_left = edge.wedge_left_P;
     x.wedge_right = edge.wedge_right_P;
-    x.p0 = pair_.a().vertex(edge.v0);
+    x.p0 = pair_.a().localVertex(edge.v0);
   }
   return x;
 }
@@ -133,8 +135,11 @@ bool FacetGraph::evaluate(const Ref& ref, Node* out) {
     // Facet f.a of A plus the vertex of -B supporting its normal.
     const Eigen::Vector3d& n = a.faceNormal(f.a);
     const int vb = pair_.supportMinusB(n, ref.hint_b, &support, &gap);
-    out->plane = PdPlane{
-        {FaceOfM::Kind::kFV, f.a, vb}, n, a.faceOffset(f.a) - n.dot(pair_.bVertex(vb)), a.faceVertices(f.a)[0], vb};
+    out->plane = PdPlane{{FaceOfM::Kind::kFV, f.a, vb},
+                         n,
+                         a.localFaceOffset(f.a) - n.dot(pair_.bVertex(vb)),
+                         a.faceVertices(f.a)[0],
+                         vb};
     out->generic = gap > pair_.tieTolerance();
     ok = true;
   } else if (f.kind == FaceOfM::Kind::kVF && f.b >= 0 && f.b < b.numFaces()) {
@@ -143,7 +148,7 @@ bool FacetGraph::evaluate(const Ref& ref, Node* out) {
     const int va = pair_.supportA(n, ref.hint_a, &support, &gap);
     out->plane = PdPlane{{FaceOfM::Kind::kVF, va, f.b},
                          n,
-                         n.dot(a.vertex(va)) + b.faceOffset(f.b) - n.dot(pair_.p_AB()),
+                         n.dot(a.localVertex(va)) + b.localFaceOffset(f.b) - n.dot(pair_.p_AB()),
                          va,
                          b.faceVertices(f.b)[0]};
     out->generic = gap > pair_.tieTolerance();

@@ -1,5 +1,6 @@
 // Construction of ConvexPolytope from a point set:
-//   1. validation (empty, non-finite, collinear),
+//   1. validation (empty, non-finite, out of the supported range, collinear),
+//      and the local frame: the points relative to their bounding box's centre,
 //   2. flatness test against the least-squares plane,
 //   3. hull: qhull in 3D (or 2D for flat sets), coplanar facets merged,
 //   4. topology: edges with their Gaussian-arc wedges, vertex adjacency,
@@ -25,7 +26,7 @@ class PolytopeBuilder {
  public:
   explicit PolytopeBuilder(ConvexPolytope* out) : out_(out) {}
 
-  void build(const std::vector<Eigen::Vector3d>& points);
+  void build(const std::vector<Eigen::Vector3d>& points_P);
 
  private:
   struct Face {
@@ -38,6 +39,7 @@ class PolytopeBuilder {
   void finish(const std::vector<Eigen::Vector3d>& points, std::vector<Face> faces);
 
   ConvexPolytope* out_;
+  const std::vector<Eigen::Vector3d>* input_P_ = nullptr;  ///< the caller's points (frame P)
 };
 
 namespace {
@@ -63,18 +65,43 @@ ConvexPolytope ConvexPolytope::fromPoints(const std::vector<Eigen::Vector3d>& po
   return polytope;
 }
 
-void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points) {
+void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points_P) {
   // Phase 1: validation.
-  if (points.empty()) throw InvalidInputError("polytope: the point set is empty");
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (!points[i].allFinite()) {
-      throw InvalidInputError("polytope: point " + std::to_string(i) + " " + pointText(points[i]) +
+  if (points_P.empty()) throw InvalidInputError("polytope: the point set is empty");
+  for (size_t i = 0; i < points_P.size(); ++i) {
+    if (!points_P[i].allFinite()) {
+      throw InvalidInputError("polytope: point " + std::to_string(i) + " " + pointText(points_P[i]) +
                               " has a non-finite coordinate");
     }
+    if (points_P[i].cwiseAbs().maxCoeff() > defaults::kMaxCoordinate) {
+      std::ostringstream msg;
+      msg << "polytope: point " << i << " " << pointText(points_P[i])
+          << " is out of the supported range: coordinates must be at most " << defaults::kMaxCoordinate
+          << " in magnitude (the arithmetic would overflow)";
+      throw InvalidInputError(msg.str());
+    }
   }
-  if (points.size() < 3) {
-    throw DegenerateGeometryError("polytope: " + std::to_string(points.size()) +
+  if (points_P.size() < 3) {
+    throw DegenerateGeometryError("polytope: " + std::to_string(points_P.size()) +
                                   " point(s) given; at least three non-collinear points are needed");
+  }
+  // The local frame L: P translated to the centre of the bounding box. For a
+  // body far from P's origin, p - centre is exact (both of nearly equal
+  // magnitude), so everything below sees the body's shape at full precision.
+  input_P_ = &points_P;
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points_P) box.extend(p);
+  out_->p_PL_ = box.center();
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(points_P.size());
+  for (const Eigen::Vector3d& p : points_P) points.push_back(p - out_->p_PL_);
+  const double extent = box.sizes().maxCoeff();
+  if (extent > 0.0 && extent < defaults::kMinSize) {
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "polytope: the points span only " << extent << ", below the smallest supported body size "
+        << defaults::kMinSize << " (the arithmetic would underflow)";
+    throw InvalidInputError(msg.str());
   }
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) mean += p;
@@ -89,7 +116,7 @@ void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points) {
   diameter *= 2.0;  // an upper bound on the diameter, within a factor 2
   if (!(diameter > 0.0)) {
     throw DegenerateGeometryError("polytope: all " + std::to_string(points.size()) + " points coincide at " +
-                                  pointText(points[0]));
+                                  pointText(points_P[0]));
   }
   // Phase 2: the least-squares line and plane (eigenvalues ascending).
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
@@ -123,7 +150,18 @@ void PolytopeBuilder::buildFlat(const std::vector<Eigen::Vector3d>& points, cons
   std::vector<Eigen::Vector2d> planar;
   planar.reserve(points.size());
   for (const Eigen::Vector3d& p : points) planar.emplace_back(p.dot(e1), p.dot(e2));
-  const std::vector<int> ring = detail::hull2d(planar, "polytope (flat polygon)");
+  // A triangle (every piece of a triangle mesh) is its own hull: order its
+  // corners counter-clockwise without a qhull run (qhull's set-up dominated
+  // the loading of 40,000-triangle meshes). The collinearity test above
+  // guarantees a nonzero area.
+  std::vector<int> ring;
+  if (planar.size() == 3) {
+    const Eigen::Vector2d d1 = planar[1] - planar[0];
+    const Eigen::Vector2d d2 = planar[2] - planar[0];
+    ring = d1.x() * d2.y() - d1.y() * d2.x() > 0.0 ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 2, 1};
+  } else {
+    ring = detail::hull2d(planar, "polytope (flat polygon)");
+  }
   out_->flat_ = true;
   // Two faces with the same loop: +normal counter-clockwise, -normal reversed.
   std::vector<Face> faces(2);
@@ -174,8 +212,9 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
   for (const Face& f : faces) {
     for (int v : f.loop) {
       if (index_of[v] < 0) {
-        index_of[v] = static_cast<int>(p.vertices_P_.size());
-        p.vertices_P_.push_back(points[v]);
+        index_of[v] = static_cast<int>(p.vertices_L_.size());
+        p.vertices_L_.push_back(points[v]);
+        p.vertices_P_.push_back((*input_P_)[static_cast<size_t>(v)]);
       }
     }
   }
@@ -190,7 +229,7 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
     }
     p.face_vertex_begin_.push_back(static_cast<int>(p.face_vertex_ids_.size()));
     p.face_normals_P_.push_back(f.normal);
-    p.face_offsets_.push_back(h);
+    p.face_offsets_L_.push_back(h);
   }
   // Edges: each directed edge a->b of face f (counter-clockwise about n(f))
   // meets its reverse in exactly one other face g. dir = b - a carries n(f) to
@@ -220,7 +259,7 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
     e.v1 = key.second;
     e.face_left = f;
     e.face_right = rev->second;
-    e.dir_P = (p.vertices_P_[e.v1] - p.vertices_P_[e.v0]).normalized();
+    e.dir_P = (p.vertices_L_[e.v1] - p.vertices_L_[e.v0]).normalized();
     e.wedge_left_P = e.dir_P.cross(p.face_normals_P_[e.face_left]);
     e.wedge_right_P = p.face_normals_P_[e.face_right].cross(e.dir_P);
     const int id = p.numEdges();
@@ -264,11 +303,12 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
     p.vertex_face_begin_.push_back(static_cast<int>(p.vertex_face_ids_.size()));
   }
   // Centroid (mean of vertices: interior, or relative interior when flat).
-  p.centroid_P_.setZero();
-  for (const Eigen::Vector3d& v : p.vertices_P_) p.centroid_P_ += v;
-  p.centroid_P_ /= nv;
+  p.centroid_L_.setZero();
+  for (const Eigen::Vector3d& v : p.vertices_L_) p.centroid_L_ += v;
+  p.centroid_L_ /= nv;
+  p.centroid_P_ = p.centroid_L_ + p.p_PL_;
   p.radius_ = 0.0;
-  for (const Eigen::Vector3d& v : p.vertices_P_) p.radius_ = std::max(p.radius_, (v - p.centroid_P_).norm());
+  for (const Eigen::Vector3d& v : p.vertices_L_) p.radius_ = std::max(p.radius_, (v - p.centroid_L_).norm());
 }
 
 }  // namespace mddual

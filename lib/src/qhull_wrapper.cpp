@@ -40,6 +40,22 @@ class ErrorCapture {
   FILE* stream_ = nullptr;
 };
 
+/// qhull's diagnostic, cut to its first sentence: qhull prints kilobytes of
+/// options, statistics and advice after it, which must not reach a user's
+/// error message raw. "QH6214 qhull input error: not enough points(3) to
+/// construct initial simplex (need 4)\n..." becomes "QH6214 qhull input
+/// error: not enough points(3) to construct initial simplex (need 4)".
+std::string summary(const std::string& text) {
+  constexpr std::size_t kMaxChars = 200;
+  std::size_t start = text.find("QH");
+  if (start == std::string::npos) start = 0;
+  std::string line = text.substr(start, text.find('\n', start) - start);
+  const std::size_t stop = line.find(". ");
+  if (stop != std::string::npos) line.resize(stop);
+  if (line.size() > kMaxChars) line = line.substr(0, kMaxChars) + "...";
+  return line.empty() ? std::string("(no message from qhull)") : line;
+}
+
 /// Owns one qhull run: constructs, runs and frees it.
 class QhullRun {
  public:
@@ -58,21 +74,32 @@ class QhullRun {
     const int count = static_cast<int>(coords->size()) / dim;
     exit_code_ = qh_new_qhull(&qh_, dim, count, coords->data(), False, options.data(), nullptr, errors_.stream());
     if (exit_code_ != 0) {
-      throw HullError(what + ": qhull failed (exit code " + std::to_string(exit_code_) + "): " + errors_.text());
+      // The destructor does not run when the constructor throws: free here
+      // (qhull allocated its buffers before it failed; the fuzzer's leak
+      // check found them lost on every failed hull).
+      const std::string message = summary(errors_.text());
+      release();
+      throw HullError(what + ": the convex hull failed (qhull exit code " + std::to_string(exit_code_) +
+                      "): " + message);
     }
   }
-  ~QhullRun() {
-    qh_freeqhull(&qh_, !qh_ALL);
-    int curlong = 0;
-    int totlong = 0;
-    qh_memfreeshort(&qh_, &curlong, &totlong);
-  }
+  ~QhullRun() { release(); }
   QhullRun(const QhullRun&) = delete;
   QhullRun& operator=(const QhullRun&) = delete;
 
   qhT* qh() { return &qh_; }
 
  private:
+  void release() {
+    if (released_) return;
+    released_ = true;
+    qh_freeqhull(&qh_, !qh_ALL);
+    int curlong = 0;
+    int totlong = 0;
+    qh_memfreeshort(&qh_, &curlong, &totlong);
+  }
+
+  bool released_ = false;
   qhT qh_{};
   ErrorCapture errors_;
   int exit_code_ = 0;

@@ -110,7 +110,7 @@ std::vector<Eigen::Vector3d> pointsInA(const PairGeometry& pair, bool of_b, cons
   const int n = ids != nullptr ? static_cast<int>(ids->size()) : p.numVertices();
   for (int k = 0; k < n; ++k) {
     const int v = ids != nullptr ? (*ids)[k] : k;
-    out.push_back(of_b ? pair.bVertex(v) : p.vertex(v));
+    out.push_back(of_b ? pair.bVertex(v) : p.localVertex(v));
   }
   return out;
 }
@@ -156,7 +156,7 @@ LineInterval flatInterval(const PairGeometry& pair, const Eigen::Vector3d& u_A, 
   stats->planar = true;
   const Eigen::Vector3d& nu = pair.flatNormal();
   const PlanarDifference m(pointsInA(pair, false, nullptr), pointsInA(pair, true, nullptr), nu);
-  const double k = nu.dot(pair.a().vertex(0) - pair.bVertex(0));
+  const double k = nu.dot(pair.a().localVertex(0) - pair.bVertex(0));
   const double tol = pair.touchTolerance();
   const double along = nu.dot(u_A);
   if (std::abs(along) <= defaults::kParallelSin) {
@@ -287,7 +287,7 @@ ToiResult toi(const DirectionalInput& input, WarmStart* warm) {
   // 1. Setup.
   const PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, "toi");
   const Eigen::Vector3d u_A = pair.vectorToA(detail::unitDirection(input.s_W, "toi"));
-  if (std::isnan(input.max_distance)) throw InvalidInputError("toi: max_distance is NaN");
+  detail::checkMaxDistance(input.max_distance, "toi");
   const double tol = pair.touchTolerance();
   const double max_distance = input.max_distance;
   ToiResult r;
@@ -400,7 +400,7 @@ IntersectResult intersect(const IntersectInput& input, WarmStart* warm) {
     if (pair.flatM()) {
       r.stats.planar = true;
       const Eigen::Vector3d& nu = pair.flatNormal();
-      const double k = nu.dot(pair.a().vertex(0) - pair.bVertex(0));
+      const double k = nu.dot(pair.a().localVertex(0) - pair.bVertex(0));
       if (std::abs(k) > tol) return separated(k < 0.0 ? nu : Eigen::Vector3d(-nu));
       const PlanarDifference m(pointsInA(pair, false, nullptr), pointsInA(pair, true, nullptr), nu);
       Eigen::Vector3d edge_normal;

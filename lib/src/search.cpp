@@ -155,14 +155,14 @@ bool Searcher::cannotWin(const Eigen::Vector3d& n, double h_lower, const Candida
 bool Searcher::evalFV(int fa, int hint_b, const Candidate& best, Candidate* c) const {
   // FV face: facet fa of A plus the vertex of -B supporting n(fa).
   const Eigen::Vector3d& n = a_.faceNormal(fa);
-  if (hint_b >= 0 && cannotWin(n, a_.faceOffset(fa) - n.dot(pair_.bVertex(hint_b)), best)) return false;
+  if (hint_b >= 0 && cannotWin(n, a_.localFaceOffset(fa) - n.dot(pair_.bVertex(hint_b)), best)) return false;
   c->face = {FaceOfM::Kind::kFV, fa, 0};
   c->n = n;
   double gap = 0.0;
   c->vb = pair_.supportMinusB(c->n, hint_b, stats_, &gap);
   c->generic = gap > pair_.tieTolerance();
   c->va = a_.faceVertices(fa)[0];
-  c->h = a_.faceOffset(fa) - c->n.dot(pair_.bVertex(c->vb));
+  c->h = a_.localFaceOffset(fa) - c->n.dot(pair_.bVertex(c->vb));
   c->phi = objective(c->n, c->h);
   return true;
 }
@@ -171,15 +171,15 @@ bool Searcher::evalVF(int fb, int hint_a, const Candidate& best, Candidate* c) c
   // VF face: the vertex of A supporting n plus facet fb of -B, n = -n(fb).
   // Its offset is h_A(n) + h_-B(n) with h_-B(n) = offset(fb) - n . p_AB.
   const Eigen::Vector3d n = -pair_.bToA(b_.faceNormal(fb));
-  const double h_b = b_.faceOffset(fb) - n.dot(pair_.p_AB());
-  if (hint_a >= 0 && cannotWin(n, n.dot(a_.vertex(hint_a)) + h_b, best)) return false;
+  const double h_b = b_.localFaceOffset(fb) - n.dot(pair_.p_AB());
+  if (hint_a >= 0 && cannotWin(n, n.dot(a_.localVertex(hint_a)) + h_b, best)) return false;
   c->face = {FaceOfM::Kind::kVF, 0, fb};
   c->n = n;
   double gap = 0.0;
   c->va = pair_.supportA(c->n, hint_a, stats_, &gap);
   c->generic = gap > pair_.tieTolerance();
   c->vb = b_.faceVertices(fb)[0];
-  c->h = c->n.dot(a_.vertex(c->va)) + h_b;
+  c->h = c->n.dot(a_.localVertex(c->va)) + h_b;
   c->phi = objective(c->n, c->h);
   return true;
 }
@@ -338,7 +338,7 @@ EdgeInA Searcher::edgeInA(int e, bool of_b) const {
     x.dir = edge.dir_P;
     x.wedge_left = edge.wedge_left_P;
     x.wedge_right = edge.wedge_right_P;
-    x.p0 = a_.vertex(edge.v0);
+    x.p0 = a_.localVertex(edge.v0);
   }
   return x;
 }
@@ -503,11 +503,11 @@ Eigen::Vector3d contactPointOnA(const PairGeometry& pair, const RayExit& exit, c
   pair.a().supportTies(exit.n_A, exit.va, tie, &ties_a);
   pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, tie, &ties_b);
   // x = a - b with a on A's supporting feature and b on B's.
-  if (ties_a.size() == 1) return pair.a().vertex(ties_a[0]);
+  if (ties_a.size() == 1) return pair.a().localVertex(ties_a[0]);
   if (ties_b.size() == 1) return x_A + pair.bVertex(ties_b[0]);
   std::vector<Eigen::Vector3d> pa;
   std::vector<Eigen::Vector3d> pb;
-  for (int v : ties_a) pa.push_back(pair.a().vertex(v));
+  for (int v : ties_a) pa.push_back(pair.a().localVertex(v));
   for (int v : ties_b) pb.push_back(pair.bVertex(v));
   if (pa.size() == 2 && pb.size() == 2) {
     // Edge-edge: the point of edge a0-a1 closest to the line (b0-b1) + x.

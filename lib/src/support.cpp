@@ -62,7 +62,7 @@ bool hullAdjacency(const std::vector<Eigen::Vector3d>& points, std::vector<int>*
 int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats,
                                            double* gap) const {
   int best = start;
-  double best_value = d_P.dot(vertices_P_[best]);
+  double best_value = d_P.dot(vertices_L_[best]);
   int visited = 1;
   double runner_up = -std::numeric_limits<double>::infinity();  // best neighbour of `best`
   for (;;) {
@@ -70,7 +70,7 @@ int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start
     double next_value = best_value;
     runner_up = -std::numeric_limits<double>::infinity();
     for (int w : vertexNeighbors(best)) {
-      const double value = d_P.dot(vertices_P_[w]);
+      const double value = d_P.dot(vertices_L_[w]);
       ++visited;
       runner_up = std::max(runner_up, value);
       if (value > next_value) {
@@ -90,13 +90,13 @@ int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start
 int ConvexPolytope::climbLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local_start,
                                SupportStats* stats) const {
   int best = local_start;
-  double best_value = d_P.dot(vertices_P_[level.vertex_ids[best]]);
+  double best_value = d_P.dot(vertices_L_[level.vertex_ids[best]]);
   int visited = 1;
   for (;;) {
     int next = best;
     for (int i = level.adjacency_begin[best]; i < level.adjacency_begin[best + 1]; ++i) {
       const int w = level.adjacency[i];
-      const double value = d_P.dot(vertices_P_[level.vertex_ids[w]]);
+      const double value = d_P.dot(vertices_L_[level.vertex_ids[w]]);
       ++visited;
       if (value > best_value) {
         best_value = value;
@@ -116,9 +116,9 @@ int ConvexPolytope::descendLevel(const HierarchyLevel& level, const Eigen::Vecto
   // of its neighbours that the coarser level dropped; a climb from a better
   // such neighbour settles ties and degenerate cases.
   int best = local;
-  double best_value = d_P.dot(vertices_P_[level.vertex_ids[local]]);
+  double best_value = d_P.dot(vertices_L_[level.vertex_ids[local]]);
   for (int i = level.removed_begin[local]; i < level.removed_begin[local + 1]; ++i) {
-    const double value = d_P.dot(vertices_P_[level.vertex_ids[level.removed[i]]]);
+    const double value = d_P.dot(vertices_L_[level.vertex_ids[level.removed[i]]]);
     if (value > best_value) {
       best_value = value;
       best = level.removed[i];
@@ -135,7 +135,7 @@ int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportSt
   int local = 0;
   double best = -std::numeric_limits<double>::infinity();
   for (int i = 0; i < static_cast<int>(top.vertex_ids.size()); ++i) {
-    const double value = d_P.dot(vertices_P_[top.vertex_ids[i]]);
+    const double value = d_P.dot(vertices_L_[top.vertex_ids[i]]);
     if (value > best) {
       best = value;
       local = i;
@@ -149,10 +149,10 @@ int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportSt
   // The full polytope: its dropped neighbours, then a climb that certifies
   // the answer (a local maximum of a linear function on a polytope).
   int v = levels_[0].below[local];
-  double value = d_P.dot(vertices_P_[v]);
+  double value = d_P.dot(vertices_L_[v]);
   int start = v;
   for (int i = removed_begin_[v]; i < removed_begin_[v + 1]; ++i) {
-    const double w_value = d_P.dot(vertices_P_[removed_[i]]);
+    const double w_value = d_P.dot(vertices_L_[removed_[i]]);
     if (w_value > value) {
       value = w_value;
       start = removed_[i];
@@ -167,20 +167,20 @@ int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportS
   // hint wins for coherent queries, the table when the direction moved far
   // (or when there is no hint); the climb then makes the answer exact.
   int start = tableStart(d_P);
-  if (hint >= 0 && d_P.dot(vertices_P_[hint]) > d_P.dot(vertices_P_[start])) start = hint;
+  if (hint >= 0 && d_P.dot(vertices_L_[hint]) > d_P.dot(vertices_L_[start])) start = hint;
   if (stats != nullptr) stats->vertices_visited += hint >= 0 ? 2 : 1;
   return supportVertexHillClimb(d_P, start, stats, gap);
 }
 
 void ConvexPolytope::supportTies(const Eigen::Vector3d& d_P, int v, double tol, std::vector<int>* out) const {
   const size_t first = out->size();
-  const double threshold = d_P.dot(vertices_P_[v]) - tol;
+  const double threshold = d_P.dot(vertices_L_[v]) - tol;
   out->push_back(v);
   // Breadth-first walk over tied vertices. Tie sets are small (a face at
   // most), so membership is a linear scan of what this call appended.
   for (size_t i = first; i < out->size(); ++i) {
     for (int w : vertexNeighbors((*out)[i])) {
-      if (d_P.dot(vertices_P_[w]) < threshold) continue;
+      if (d_P.dot(vertices_L_[w]) < threshold) continue;
       if (std::find(out->begin() + static_cast<std::ptrdiff_t>(first), out->end(), w) == out->end()) {
         out->push_back(w);
       }
@@ -293,7 +293,7 @@ void ConvexPolytope::buildHierarchy() {
       level.below = survivors;
     } else {
       std::vector<Eigen::Vector3d> points;
-      for (int i : survivors) points.push_back(vertices_P_[ids[i]]);
+      for (int i : survivors) points.push_back(vertices_L_[ids[i]]);
       std::vector<int> kept;
       if (!hullAdjacency(points, &kept, &next_adjacency)) break;
       for (int k : kept) level.below.push_back(survivors[k]);

@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -96,6 +97,43 @@ CliRun runCli(const std::vector<std::string>& args, const std::string& stdin_tex
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   const pid_t pid = spawn(withBinary(args), &actions);
   posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  CliRun run;
+  run.exit_code = exitStatus(status);
+  run.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  run.out = readFile(out);
+  run.err = readFile(err);
+  return run;
+}
+
+CliRun runCliWithMemoryLimit(const std::vector<std::string>& args, const std::string& stdin_text,
+                             std::size_t address_space_bytes) {
+  const TempDir dir;
+  const std::string in = dir.write("stdin", stdin_text);
+  const std::string out = dir.path() + "/stdout";
+  const std::string err = dir.path() + "/stderr";
+  std::vector<std::string> all = withBinary(args);
+  std::vector<char*> argv = argvFor(&all);
+  // posix_spawn cannot set a limit in the child: fork, limit, exec (only
+  // async-signal-safe calls between fork and exec).
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    const int fd_in = open(in.c_str(), O_RDONLY);
+    const int fd_out = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int fd_err = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd_in < 0 || fd_out < 0 || fd_err < 0 || dup2(fd_in, 0) < 0 || dup2(fd_out, 1) < 0 || dup2(fd_err, 2) < 0) {
+      _exit(127);
+    }
+    rlimit limit{};
+    limit.rlim_cur = address_space_bytes;
+    limit.rlim_max = address_space_bytes;
+    if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(126);
+    execv(argv[0], argv.data());
+    _exit(125);
+  }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }

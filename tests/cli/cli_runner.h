@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,11 @@ struct CliRun {
 
 /// Runs `mddual args...` with `stdin_text` on standard input, to completion.
 CliRun runCli(const std::vector<std::string>& args, const std::string& stdin_text = "");
+
+/// runCli with the child's address space limited to `address_space_bytes`
+/// (setrlimit RLIMIT_AS), so that an allocation beyond it fails.
+CliRun runCliWithMemoryLimit(const std::vector<std::string>& args, const std::string& stdin_text,
+                             std::size_t address_space_bytes);
 
 /// `mddual args...` with pipes to its standard input and output.
 class CliProcess {

@@ -221,7 +221,7 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
       {{cfg, "--time-limit=-1"}, "--time-limit: '-1' is not a positive number"},
       {{cfg, "--time-limit", "1e18", "--output", out}, "the time limit must be a positive number of seconds, at most"},
       {{cfg, "--seed", "0"}, "--seed: '0' is not a positive integer"},
-      {{cfg, "--planners", "prm"}, "planner 'prm' is not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},
+      {{cfg, "--planners", "prn"}, "unknown planner 'prn': not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},
       {{cfg, "--shard", "2/3", "--output", out}, "--shard 2/3: only 2 runs per planner, so at most 2 shards"},
       {{}, "no config file given"},
       {{cfg, "--report", out}, "either a config file or --report DIR"},
@@ -243,7 +243,7 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
   // bench-report on logs that do not form complete shard sets: nothing is built.
   TempDir mixed;
   for (const char* f : {"tiny-mdd.log", "tiny-mdd.shard0of2.log", "tiny-fcl.shard1of2.log"}) {
-    std::ofstream(fs::path(mixed.path()) / f) << "\n";
+    std::ofstream(fs::path(mixed.path()) / f) << f << "\n";  // distinct: copies would be counted once
   }
   const CliRun bad_set = runCli({"bench-report", mixed.path()});
   EXPECT_EQ(bad_set.exit_code, 2);
@@ -266,9 +266,12 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
   const CliRun no_python = runCli({"bench", cfg, "--output", out});
   ::unsetenv("MDDUAL_PYTHON");
   EXPECT_EQ(no_mpl.exit_code, 2);
-  EXPECT_NE(no_mpl.err.find("no python3 with matplotlib (tried /bin/false)"), std::string::npos) << no_mpl.err;
+  EXPECT_NE(no_mpl.err.find("no python3 with matplotlib (tried /bin/false, from MDDUAL_PYTHON)"), std::string::npos)
+      << no_mpl.err;
   EXPECT_EQ(no_python.exit_code, 2);
-  EXPECT_NE(no_python.err.find("python3 not found"), std::string::npos) << no_python.err;
+  EXPECT_NE(no_python.err.find("MDDUAL_PYTHON='" + (base / "no-python3").string() + "' is not an executable file"),
+            std::string::npos)
+      << no_python.err;
   EXPECT_FALSE(fs::exists(base / "out" / "tiny-mdd.log")) << "nothing ran";
 }
 

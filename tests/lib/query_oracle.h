@@ -53,6 +53,15 @@ inline double outsideOf(const ConvexPolytope& p, const Eigen::Isometry3d& X, con
   return worst;
 }
 
+/// Round-off of world coordinates of the pair: 16 ulps of the largest
+/// coordinate magnitude of their local origins plus their size.
+inline double worldRoundoff(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                            const Eigen::Isometry3d& X_WB) {
+  const double magnitude = std::max((X_WA * a.p_PL()).cwiseAbs().maxCoeff(), (X_WB * b.p_PL()).cwiseAbs().maxCoeff()) +
+                           a.radius() + b.radius() + (X_WA * a.p_PL() - X_WB * b.p_PL()).norm();
+  return 16.0 * std::numeric_limits<double>::epsilon() * magnitude;
+}
+
 class QueryOracle {
  public:
   /// rel_tol: agreement required, relative to the pair's length scale.
@@ -66,6 +75,11 @@ class QueryOracle {
     const detail::PairGeometry pair(&a, X_WA, &b, X_WB, "test");
     const double scale = pair.scale();
     const double tol = rel_tol_ * scale;
+    // Checks on world-frame points (contact points, separating planes) cannot
+    // be finer than the coordinates' own round-off: about 1e-16 of their
+    // magnitude, which dominates far from the origin (1e-8 of the size at an
+    // offset of 1e8 sizes). Distances and t values keep `tol`.
+    const double world_tol = tol + worldRoundoff(a, X_WA, b, X_WB);
     ++tally->scenes;
     int failures = 0;
     // Intersection test (direction-free).
@@ -76,7 +90,7 @@ class QueryOracle {
       if (fast.intersecting) ++tally->intersecting;
       bool ok = fast.status == ref.status || touchingEither(fast.status, ref.status, brute, tol);
       if (ok && fast.status == IntersectStatus::kSeparated)
-        ok = separates(a, X_WA, b, X_WB, fast.separating_normal_W, tol);
+        ok = separates(a, X_WA, b, X_WB, fast.separating_normal_W, world_tol);
       if (!ok) {
         ++failures;
         ADD_FAILURE() << "intersect: fast " << toString(fast.status) << " vs brute " << toString(ref.status)
@@ -100,8 +114,9 @@ class QueryOracle {
       if (fast.stats.planar) ++tally->planar;
       std::ostringstream why;
       if (!agree(fast, ref, tol, &why) || !agreeToi(fast_toi, ref_toi, ref, tol, &why) ||
-          !contactValid(a, X_WA, b, X_WB, s, fast, tol, &why) ||
-          (fast_toi.status == ToiStatus::kHit && !contactValid(a, X_WA, b, X_WB, s, asMdd(fast_toi), tol, &why)) ||
+          !contactValid(a, X_WA, b, X_WB, s, fast, world_tol, &why) ||
+          (fast_toi.status == ToiStatus::kHit &&
+           !contactValid(a, X_WA, b, X_WB, s, asMdd(fast_toi), world_tol, &why)) ||
           !decisionAgrees(decided, hit_within, ref_toi, ref, yes_no.max_distance, tol, &why)) {
         ++failures;
         ADD_FAILURE() << why.str() << "\n  fast: " << describe(fast) << "\n  brute: " << describe(ref)

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <functional>
 
+#include "family_support.h"
 #include "mddual/generators.h"
 #include "pd_oracle.h"
 
@@ -20,25 +21,6 @@ namespace {
 
 using generators::Points;
 using generators::Rng;
-
-double uniform(Rng& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
-int uniformInt(Rng& rng, int lo, int hi) {
-  return std::uniform_int_distribution<int>(lo, hi)(rng);
-}
-
-Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  X.translation() = p;
-  return X;
-}
-
-long envLong(const char* name, long fallback) {
-  const char* v = std::getenv(name);
-  return v != nullptr ? std::strtol(v, nullptr, 10) : fallback;
-}
 
 using Scene = std::function<void(Rng&, PdOracle&, PdTally*)>;
 

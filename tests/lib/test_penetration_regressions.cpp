@@ -49,5 +49,38 @@ TEST(PenetrationRegressions, BruteForceOnRotatedCubesFarFromTheOrigin) {
   EXPECT_NEAR(pdOf(a, b, PenetrationMethod::kBruteForce).depth, 0.3, 1e-9);
 }
 
+// Found by the far-from-origin families (not an offset bug: the same at the
+// origin): a hexagonal prism against an identical copy. The exact method's
+// closest plane was an edge-edge crossing whose normal was off by 6e-6 (its
+// depth agreed with the brute force to 3e-12, but the translation left an
+// overlap of 3e-7). The final support check now catches it and the explicit
+// M answers (stats.brute_fallbacks).
+TEST(PenetrationRegressions, IdenticalHexagonalPrisms) {
+  const Points a = {{519.69246951265723, 311.90899409413197, -152.51250924184504},
+                    {519.66441808280285, 311.90216962377156, -152.50054653364717},
+                    {519.64766912012169, 311.96217189848397, -152.50559126143401},
+                    {519.67572054997595, 311.96899636884439, -152.5175539696319},
+                    {519.65986131100851, 311.90349454451302, -152.46965894850615},
+                    {519.64311234832735, 311.96349681922538, -152.47470367629299},
+                    {519.69921520803598, 311.97714575994621, -152.49862909268876},
+                    {519.71596417071714, 311.91714348523385, -152.49358436490192},
+                    {519.7114073989228, 311.91846840597526, -152.4626967797609},
+                    {519.68335596906854, 311.91164393561485, -152.45073407156301},
+                    {519.69465843624164, 311.97847068068768, -152.46774150754774},
+                    {519.66660700638727, 311.97164621032726, -152.45577879934987}};
+  const PenetrationResult exact = pdOf(a, a, PenetrationMethod::kExact);
+  const PenetrationResult brute = pdOf(a, a, PenetrationMethod::kBruteForce);
+  ASSERT_EQ(exact.status, PenetrationStatus::kPenetrating);
+  EXPECT_NEAR(exact.depth, brute.depth, 1e-12);
+  // The translation separates: A's extent along the normal is the depth.
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (const Eigen::Vector3d& p : a) {
+    lo = std::min(lo, exact.normal_W.dot(p));
+    hi = std::max(hi, exact.normal_W.dot(p));
+  }
+  EXPECT_NEAR(hi - lo, exact.depth, 1e-12);
+}
+
 }  // namespace
 }  // namespace mddual

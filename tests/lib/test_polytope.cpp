@@ -8,6 +8,7 @@
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/polytope.h"
+#include "qhull_wrapper.h"
 
 namespace mddual {
 namespace {
@@ -146,8 +147,69 @@ TEST(Polytope, ErrorsNameTheProblem) {
   EXPECT_NE(message({{0, 0, 0}, {1, 0, 0}}).find("degenerate: polytope: 2 point(s)"), std::string::npos);
   EXPECT_NE(message({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}).find("collinear"), std::string::npos);
   EXPECT_NE(message({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}).find("coincide"), std::string::npos);
+  // Out of the supported range (defaults::kMaxCoordinate, kMinSize): named,
+  // instead of "collinear" or an Euler-formula failure deep in the hull.
+  EXPECT_NE(message({{0, 0, 0}, {1e75, 0, 0}, {0, 1, 0}, {0, 0, 1}})
+                .find("point 1 [9.9999999999999993e+74, 0, 0] is out of the supported range"),
+            std::string::npos);
+  EXPECT_NE(
+      message({{0, 0, 0}, {1e-80, 0, 0}, {0, 1e-80, 0}, {0, 0, 1e-80}}).find("below the smallest supported body size"),
+      std::string::npos);
   // The base class catches them all.
   EXPECT_THROW(ConvexPolytope::fromPoints({}), Error);
+}
+
+TEST(Polytope, FarFromTheOriginKeepsItsShape) {
+  // Issue "Exact everywhere": an octahedron of radius 1e-5 at (1000, 1000,
+  // 1000) failed with "hull edge 5->3 appears twice", a triangle of size 5e-3
+  // at 2.5e4 with qhull's "not enough points to construct initial simplex".
+  // In the local frame (the points' box centre) both are well conditioned.
+  const double r = 1e-5;
+  const Eigen::Vector3d c(1000, 1000, 1000);
+  const Points octahedron = {c + Eigen::Vector3d(r, 0, 0), c - Eigen::Vector3d(r, 0, 0), c + Eigen::Vector3d(0, r, 0),
+                             c - Eigen::Vector3d(0, r, 0), c + Eigen::Vector3d(0, 0, r), c - Eigen::Vector3d(0, 0, r)};
+  const ConvexPolytope o = ConvexPolytope::fromPoints(octahedron);
+  EXPECT_EQ(o.numVertices(), 6);
+  EXPECT_EQ(o.numFaces(), 8);
+  expectWellFormed(o);
+  EXPECT_EQ(o.p_PL(), c);
+  for (int v = 0; v < o.numVertices(); ++v) {
+    EXPECT_EQ(o.vertex(v), o.localVertex(v) + o.p_PL());  // exact: the input point
+    EXPECT_LE(o.localVertex(v).norm(), r * (1 + 1e-9));
+  }
+  for (int f = 0; f < o.numFaces(); ++f) {
+    EXPECT_NEAR(o.localFaceOffset(f), r / std::sqrt(3.0), 4e-13);  // the input points carry ulp(1000) = 1.1e-13
+    EXPECT_NEAR(o.faceOffset(f), o.localFaceOffset(f) + o.faceNormal(f).dot(c), 1e-12);
+  }
+  const double o2 = 2.5e4;
+  const double t = 5e-3;
+  const ConvexPolytope tri = ConvexPolytope::fromPoints({{o2, o2, o2}, {o2 + t, o2, o2}, {o2, o2 + t, o2 + t / 3}});
+  EXPECT_TRUE(tri.isFlat());
+  EXPECT_EQ(tri.numVertices(), 3);
+  expectWellFormed(tri);
+}
+
+}  // namespace
+}  // namespace mddual
+
+namespace mddual {
+namespace {
+
+TEST(QhullWrapper, FailureIsReportedBrieflyAndFreesQhull) {
+  // Found by fuzz_polytope: qhull's buffers leaked on every failed hull (the
+  // wrapper threw from its constructor, so its destructor never ran); the
+  // leak check of the sanitizer build fails this test if that comes back.
+  const std::vector<Eigen::Vector3d> coplanar = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  try {
+    detail::hull3d(coplanar, "test");
+    ADD_FAILURE() << "qhull built a 3D hull of coplanar points";
+  } catch (const HullError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("test: the convex hull failed (qhull exit code"), std::string::npos) << what;
+    EXPECT_NE(what.find("QH6"), std::string::npos) << what;  // qhull's code and first sentence ...
+    EXPECT_LT(what.size(), 400u) << what;                    // ... not its kilobytes of diagnostics
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <functional>
 
+#include "family_support.h"
 #include "mddual/generators.h"
 #include "query_oracle.h"
 
@@ -16,20 +17,6 @@ namespace {
 
 using generators::Points;
 using generators::Rng;
-
-double uniform(Rng& rng, double lo, double hi) {
-  return std::uniform_real_distribution<double>(lo, hi)(rng);
-}
-int uniformInt(Rng& rng, int lo, int hi) {
-  return std::uniform_int_distribution<int>(lo, hi)(rng);
-}
-
-Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = R;
-  X.translation() = p;
-  return X;
-}
 
 /// Directions for a pair: some aimed from B toward A (with noise), some random.
 std::vector<Eigen::Vector3d> aimedDirections(const Eigen::Vector3d& from_b_to_a, int count, Rng& rng) {
@@ -42,13 +29,6 @@ std::vector<Eigen::Vector3d> aimedDirections(const Eigen::Vector3d& from_b_to_a,
     }
   }
   return out;
-}
-
-/// Long sweeps outside CI: MDDUAL_SWEEP_SCALE multiplies the number of
-/// scenes, MDDUAL_SWEEP_SEED is added to every family's seed.
-long envLong(const char* name, long fallback) {
-  const char* v = std::getenv(name);
-  return v != nullptr ? std::strtol(v, nullptr, 10) : fallback;
 }
 
 /// Runs `scenes` random scenes of one family and returns the tally.

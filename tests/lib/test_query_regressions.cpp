@@ -4,6 +4,7 @@
 // status the brute force gives.
 #include <gtest/gtest.h>
 
+#include "mddual/error.h"
 #include "query_oracle.h"
 
 namespace mddual::testing {
@@ -98,6 +99,63 @@ TEST(QueryRegressions, SupportOnTheRayWithinRoundOff) {
           {-4.5, 4.5, 1}},
          {-2, 2, 2},
          ContactStatus::kTouching});
+}
+
+/// Axis-aligned cube of half side h centred at c.
+std::vector<Eigen::Vector3d> cube(const Eigen::Vector3d& c, double h) {
+  std::vector<Eigen::Vector3d> out;
+  for (int k = 0; k < 8; ++k) out.push_back(c + h * Eigen::Vector3d(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1));
+  return out;
+}
+
+TEST(QueryRegressions, FarFromTheOrigin) {
+  // Issue "Exact everywhere", before the core worked in local frames: two
+  // cubes of side 1/16 at 1e7 overlapping by 1/32 were "not intersecting"
+  // and "separated"; two cubes of side 1/256 touching face to face at 1e6
+  // got mdd 0.0069 (separated). All coordinates are exact doubles.
+  const Eigen::Vector3d far7 = Eigen::Vector3d::Constant(1e7);
+  check({"cubes of side 1/16 at 1e7 overlapping by 1/32",
+         cube(far7, 1.0 / 32),
+         cube(far7 + Eigen::Vector3d(1.0 / 32, 0, 0), 1.0 / 32),
+         {1, 0, 0},
+         ContactStatus::kPenetrating});
+  const Eigen::Vector3d far6 = Eigen::Vector3d::Constant(1e6);
+  check({"cubes of side 1/256 touching face to face at 1e6",
+         cube(far6, 1.0 / 512),
+         cube(far6 + Eigen::Vector3d(1.0 / 256, 0, 0), 1.0 / 512),
+         {-1, 0.3, 0},
+         ContactStatus::kTouching});
+  const ConvexPolytope a = ConvexPolytope::fromPoints(cube(far7, 1.0 / 32));
+  const ConvexPolytope b = ConvexPolytope::fromPoints(cube(far7 + Eigen::Vector3d(1.0 / 32, 0, 0), 1.0 / 32));
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  const MddResult r = mdd(DirectionalInput{&a, I, &b, I, {1, 0, 0}});
+  EXPECT_EQ(r.distance, -1.0 / 32);  // exact: the local frames lose nothing here
+  EXPECT_TRUE(intersect(IntersectInput{&a, I, &b, I}).intersecting);
+}
+
+TEST(QueryRegressions, ToiRejectsANegativeMaxDistance) {
+  // Issue "Exact everywhere": toi() answered "never" for max_distance < 0
+  // while the planning layer's directed clearance threw; one rule now.
+  const ConvexPolytope a = ConvexPolytope::fromPoints(cube(Eigen::Vector3d::Zero(), 1));
+  DirectionalInput in{&a, Eigen::Isometry3d::Identity(), &a, Eigen::Isometry3d::Identity(), {1, 0, 0}};
+  in.max_distance = -1.0;
+  EXPECT_THROW(toi(in), InvalidInputError);
+  in.max_distance = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(toi(in), InvalidInputError);
+  in.max_distance = 0.0;
+  EXPECT_EQ(toi(in).status, ToiStatus::kInContact);
+}
+
+TEST(QueryRegressions, PosesBeyondTheSupportedRangeAreNamed) {
+  const ConvexPolytope a = ConvexPolytope::fromPoints(cube(Eigen::Vector3d::Zero(), 1));
+  Eigen::Isometry3d far = Eigen::Isometry3d::Identity();
+  far.translation() = Eigen::Vector3d(1e60, 0, 0);
+  try {
+    intersect(IntersectInput{&a, Eigen::Isometry3d::Identity(), &a, far});
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pose X_WB has a translation beyond"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

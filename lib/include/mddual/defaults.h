@@ -9,6 +9,16 @@ namespace mddual::defaults {
 
 // ---- Hull construction (ConvexPolytope::fromPoints) -------------------------
 
+// Supported range of coordinates (world units). The queries form products of
+// up to four lengths (cross products of edge vectors dotted with differences,
+// squared norms of those): with every coordinate at most kMaxCoordinate in
+// magnitude and every body at least kMinSize across, such products stay
+// within [1e-200, 1e200], far from double's overflow (1.8e308) and underflow
+// (2.2e-308). Points beyond are rejected with InvalidInputError; poses whose
+// translation exceeds kMaxCoordinate likewise.
+inline constexpr double kMaxCoordinate = 1e50;
+inline constexpr double kMinSize = 1e-50;
+
 // A point set whose thickness (largest distance to the best plane through it)
 // is at most kFlatToleranceRel times its diameter is treated as a flat polygon.
 // Reason: qhull's own round-off (~1e-15 of the coordinates' magnitude) fails on

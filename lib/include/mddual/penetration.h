@@ -77,12 +77,17 @@ struct PenetrationStats {
   // kExact (the brute force leaves every counter 0). The method bounds every
   // candidate from below and evaluates only those that can beat the best
   // facet found (penetration_exact.cpp), so these count evaluated planes:
-  int fv_facets = 0;         ///< facet-of-A + vertex-of-B planes evaluated
-  int vf_facets = 0;         ///< vertex-of-A + facet-of-B planes evaluated
-  int ee_facets = 0;         ///< edge-edge planes found (crossings of the two Gaussian maps on walked arcs)
-  long long arc_pairs = 0;   ///< (arc of A, arc of -B) pairs tested by the map walk
-  int walk_steps = 0;        ///< vertex regions of -B entered by the map walk
-  int walk_fallbacks = 0;    ///< arcs re-done by testing every edge of B (round-off; 0 on generic input)
+  int fv_facets = 0;        ///< facet-of-A + vertex-of-B planes evaluated
+  int vf_facets = 0;        ///< vertex-of-A + facet-of-B planes evaluated
+  int ee_facets = 0;        ///< edge-edge planes found (crossings of the two Gaussian maps on walked arcs)
+  long long arc_pairs = 0;  ///< (arc of A, arc of -B) pairs tested by the map walk
+  int walk_steps = 0;       ///< vertex regions of -B entered by the map walk
+  int walk_fallbacks = 0;   ///< arcs re-done by testing every edge of B (round-off; 0 on generic input)
+  /// 1 when the closest plane failed its final check (its offset is not the
+  /// support of M along its normal: an edge-edge crossing computed from
+  /// nearly parallel edges, seen on identical bodies) and the answer was
+  /// taken from the explicit M instead; feature_a / feature_b are then kNone.
+  int brute_fallbacks = 0;
   int pruned = 0;            ///< candidates (facets of A, facets of B, arcs of A) skipped by their bound
   int support_vertices = 0;  ///< vertices whose support value was evaluated
   // kApprox, kShallow, polyhedral metric:

@@ -2,8 +2,17 @@
 // point set (the convex hull, via qhull) and then posed many times by the
 // queries without rebuilding.
 //
-// Frames: every coordinate stored here is in the polytope's body frame, which
-// the accessors call "P" (p_PV is vertex V of polytope P in frame P).
+// Frames: the polytope's body frame "P" is the frame of the points given to
+// fromPoints(); the public accessors vertex(), vertices(), faceOffset() and
+// centroid() answer in P (p_PV is vertex V of polytope P in frame P). The
+// polytope also keeps everything in a local frame "L": P translated to the
+// centre of the input points' bounding box (p_PL). The queries work in L, so
+// that a body far from its frame's origin (a 1 cm part at 100 m, a unit box at
+// 1e8) is as well conditioned as one at the origin: subtracting the centre
+// from coordinates of nearly equal magnitude is exact (Sterbenz), so the
+// local coordinates carry every bit of the input's relative geometry.
+// Directions (face normals, edge directions and wedges) are the same in P and
+// L (a translation).
 //
 // What the search needs (paper sections II-B, VI-C):
 //   - faces with unit outward normals n_P and offsets h (n . x <= h on P), the
@@ -82,13 +91,26 @@ class ConvexPolytope {
   /// True when all vertices lie in one plane (a flat polygon with two faces).
   bool isFlat() const { return flat_; }
 
+  /// Vertex v in the body frame P (one of the input points).
   const Eigen::Vector3d& vertex(int v) const { return vertices_P_[v]; }
   const std::vector<Eigen::Vector3d>& vertices() const { return vertices_P_; }
 
-  /// Unit outward normal and offset of face f: the face lies in
+  /// Unit outward normal and offset of face f in frame P: the face lies in
   /// n . x = h and the polytope in n . x <= h.
   const Eigen::Vector3d& faceNormal(int f) const { return face_normals_P_[f]; }
-  double faceOffset(int f) const { return face_offsets_[f]; }
+  double faceOffset(int f) const { return face_offsets_L_[f] + face_normals_P_[f].dot(p_PL_); }
+
+  // ---- The local frame L (see the file comment) ----
+  /// Origin of the local frame in P: the centre of the input points' bounding
+  /// box. X_PL is the translation by p_PL().
+  const Eigen::Vector3d& p_PL() const { return p_PL_; }
+  /// Vertex v in the local frame (p_PV - p_PL, computed from the input point).
+  const Eigen::Vector3d& localVertex(int v) const { return vertices_L_[v]; }
+  const std::vector<Eigen::Vector3d>& localVertices() const { return vertices_L_; }
+  /// Offset of face f in the local frame: the face lies in n . x = h_L.
+  double localFaceOffset(int f) const { return face_offsets_L_[f]; }
+  /// centroid() in the local frame.
+  const Eigen::Vector3d& localCentroid() const { return centroid_L_; }
   /// The face's vertices, counter-clockwise seen from outside (along -n).
   IndexRange faceVertices(int f) const { return range(face_vertex_begin_, face_vertex_ids_, f); }
   /// The face's edges in loop order: edge k joins faceVertices(f)[k] and [k+1].
@@ -106,7 +128,8 @@ class ConvexPolytope {
   /// Largest distance from centroid() to a vertex.
   double radius() const { return radius_; }
 
-  /// Index of a vertex v maximising d_P . vertex(v). Hill-climbs from the
+  /// Index of a vertex v maximising d_P . vertex(v) (the same vertex in any
+  /// frame that differs from P by a translation; evaluated in L). Hill-climbs from the
   /// better of `hint` (when >= 0) and the direction table's vertex for d_P (a
   /// cube map of directions, about one cell per vertex, filled with the
   /// Dobkin-Kirkpatrick hierarchy). Exact for any nonzero d_P; when several
@@ -156,9 +179,11 @@ class ConvexPolytope {
   int descendLevel(const HierarchyLevel& level, const Eigen::Vector3d& d_P, int local, SupportStats* stats) const;
 
   bool flat_ = false;
-  std::vector<Eigen::Vector3d> vertices_P_;
+  Eigen::Vector3d p_PL_ = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> vertices_L_;  ///< what the queries use
+  std::vector<Eigen::Vector3d> vertices_P_;  ///< the input points, for the public accessors
   std::vector<Eigen::Vector3d> face_normals_P_;
-  std::vector<double> face_offsets_;
+  std::vector<double> face_offsets_L_;
   std::vector<int> face_vertex_begin_;
   std::vector<int> face_vertex_ids_;
   std::vector<int> face_edge_ids_;
@@ -168,6 +193,7 @@ class ConvexPolytope {
   std::vector<int> vertex_edges_;
   std::vector<int> vertex_face_begin_;
   std::vector<int> vertex_face_ids_;
+  Eigen::Vector3d centroid_L_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d centroid_P_ = Eigen::Vector3d::Zero();
   double radius_ = 0.0;
   std::vector<HierarchyLevel> levels_;  ///< levels_[0] is the first coarsened level

@@ -20,6 +20,9 @@
 #include <ompl/geometric/planners/prm/PRMstar.h>
 #include <ompl/geometric/planners/prm/SPARS.h>
 #include <ompl/geometric/planners/prm/SPARStwo.h>
+#include <ompl/geometric/planners/rlrt/BiRLRT.h>
+#include <ompl/geometric/planners/rlrt/RLRT.h>
+#include <ompl/geometric/planners/rrt/BiTRRT.h>
 #include <ompl/geometric/planners/rrt/InformedRRTstar.h>
 #include <ompl/geometric/planners/rrt/LBTRRT.h>
 #include <ompl/geometric/planners/rrt/LazyRRT.h>
@@ -30,9 +33,14 @@
 #include <ompl/geometric/planners/rrt/RRTstar.h>
 #include <ompl/geometric/planners/rrt/SORRTstar.h>
 #include <ompl/geometric/planners/rrt/TRRT.h>
+#include <ompl/geometric/planners/rrt/pRRT.h>
 #include <ompl/geometric/planners/sbl/SBL.h>
+#include <ompl/geometric/planners/sbl/pSBL.h>
+#include <ompl/geometric/planners/sst/SST.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
 
+#include <algorithm>
+#include <cctype>
 #include <functional>
 #include <map>
 
@@ -53,7 +61,12 @@ Allocator make() {
 
 /// OMPL.app's names for its geometric planners (ompl_benchmark's list, plus
 /// OMPL 1.5's informed planners, the same set mddual::scene::knownPlannerNames
-/// accepts in a config), and ours.
+/// accepts in a config), the other geometric planners of OMPL 1.5 that need
+/// nothing but the space information, and ours. Not here: TSRRT, VFRRT,
+/// XXL, QRRT and the experience planners (Lightning, Thunder), which need a
+/// task space, a vector field, a decomposition, a hierarchy of spaces or a
+/// path database, and LazyLBTRRT, which aborts the process on an assertion
+/// inside OMPL 1.5.2 (LPAstarOnGraph::removeEdge) on a small SE(2) problem.
 const std::map<std::string, Allocator>& registry() {
   static const std::map<std::string, Allocator> planners{
       {"abitstar", make<og::ABITstar>()},
@@ -61,6 +74,8 @@ const std::map<std::string, Allocator>& registry() {
       {"aps", make<og::AnytimePathShortening>()},
       {"bfmt", make<og::BFMT>()},
       {"biest", make<og::BiEST>()},
+      {"birlrt", make<og::BiRLRT>()},
+      {"bitrrt", make<og::BiTRRT>()},
       {"bitstar", make<og::BITstar>()},
       {"bkpiece", make<og::BKPIECE1>()},
       {"cforest", make<og::CForest>()},
@@ -77,6 +92,9 @@ const std::map<std::string, Allocator>& registry() {
       {"prm", make<og::PRM>()},
       {"prmstar", make<og::PRMstar>()},
       {"projest", make<og::ProjEST>()},
+      {"prrt", make<og::pRRT>()},
+      {"psbl", make<og::pSBL>()},
+      {"rlrt", make<og::RLRT>()},
       {"rrt", make<og::RRT>()},
       {"rrtconnect", make<og::RRTConnect>()},
       {"rrtsharp", make<og::RRTsharp>()},
@@ -86,12 +104,40 @@ const std::map<std::string, Allocator>& registry() {
       {"sorrtstar", make<og::SORRTstar>()},
       {"spars", make<og::SPARS>()},
       {"spars2", make<og::SPARStwo>()},
+      {"sst", make<og::SST>()},
       {"stride", make<og::STRIDE>()},
       {"trrt", make<og::TRRT>()},
       // ours
       {"mdd_rrtconnect", make<ExactRRTConnect>()},
   };
   return planners;
+}
+
+/// Other spellings: OMPL's own planner names (Planner::getName(), lower
+/// case) where they differ from OMPL.app's.
+const std::map<std::string, std::string>& aliases() {
+  static const std::map<std::string, std::string> names{
+      {"anytimepathshortening", "aps"},
+      {"bkpiece1", "bkpiece"},
+      {"exactrrtconnect", "mdd_rrtconnect"},
+      {"kpiece1", "kpiece"},
+      {"lbkpiece1", "lbkpiece"},
+      {"rrt#", "rrtsharp"},
+      {"sparstwo", "spars2"},
+  };
+  return names;
+}
+
+std::string lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string knownList() {
+  std::string known;
+  for (const std::string& n : plannerNames()) known += (known.empty() ? "" : ", ") + n;
+  return known;
 }
 
 }  // namespace
@@ -102,14 +148,17 @@ std::vector<std::string> plannerNames() {
   return names;
 }
 
+std::string canonicalPlannerName(const std::string& name) {
+  std::string key = lower(name);
+  const auto alias = aliases().find(key);
+  if (alias != aliases().end()) key = alias->second;
+  return registry().count(key) != 0 ? key : std::string();
+}
+
 ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPtr& si,
                            const std::vector<std::pair<std::string, std::string>>& params) {
-  const auto it = registry().find(name);
-  if (it == registry().end()) {
-    std::string known;
-    for (const std::string& n : plannerNames()) known += (known.empty() ? "" : ", ") + n;
-    throw InvalidInputError("unknown planner '" + name + "' (known: " + known + ")");
-  }
+  const auto it = registry().find(canonicalPlannerName(name));
+  if (it == registry().end()) throw InvalidInputError("unknown planner '" + name + "' (known: " + knownList() + ")");
   ob::PlannerPtr planner = it->second(si);
   for (const auto& [key, value] : params) {
     if (key == "name") {
@@ -121,6 +170,53 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
     }
   }
   return planner;
+}
+
+std::vector<scene::PlannerSpec> selectPlannerSpecs(const std::vector<scene::PlannerSpec>& listed,
+                                                   const std::vector<std::string>& names, const std::string& cfg_name) {
+  if (names.empty()) {
+    if (listed.empty()) {
+      throw InvalidInputError(cfg_name + ": the [planner] section names no planner (name some, or choose them with " +
+                              "--planners)");
+    }
+    return listed;
+  }
+  // Each name: the cfg's instances of it (by its own spelling or OMPL.app's),
+  // else a new instance with default parameters.
+  std::vector<bool> take(listed.size(), false);
+  std::vector<scene::PlannerSpec> defaults;
+  for (const std::string& name : names) {
+    const std::string canonical = canonicalPlannerName(name);
+    bool found = false;
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      if (listed[i].name == name || (!canonical.empty() && listed[i].name == canonical)) {
+        take[i] = true;
+        found = true;
+      }
+    }
+    if (found) continue;
+    if (canonical.empty()) {
+      std::string in_cfg;
+      for (const scene::PlannerSpec& p : listed) {
+        if (in_cfg.find(" " + p.name + ",") == std::string::npos) in_cfg += " " + p.name + ",";
+      }
+      in_cfg = in_cfg.empty() ? "none" : in_cfg.substr(1, in_cfg.size() - 2);
+      throw InvalidInputError("unknown planner '" + name + "': not in " + cfg_name + " (its planners: " + in_cfg +
+                              ") and not a planner name (known: " + knownList() + ")");
+    }
+    const bool twice =
+        std::any_of(defaults.begin(), defaults.end(), [&](const scene::PlannerSpec& p) { return p.name == canonical; });
+    if (twice) continue;
+    scene::PlannerSpec spec;
+    spec.name = canonical;
+    defaults.push_back(spec);
+  }
+  std::vector<scene::PlannerSpec> out;
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    if (take[i]) out.push_back(listed[i]);
+  }
+  out.insert(out.end(), defaults.begin(), defaults.end());
+  return out;
 }
 
 }  // namespace mddual::planning

@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "mddual/error.h"
+#include "mddual/planning/planner_factory.h"
 
 namespace mddual::planning {
 
@@ -101,7 +102,7 @@ void savePath(const og::PathGeometric& path, const std::filesystem::path& file) 
 }  // namespace
 
 BenchShard parseShard(const std::string& text) {
-  const std::string what = "--shard '" + text + "': expected I/N with 0 <= I < N (e.g. 0/4)";
+  const std::string what = "--shard '" + clipForMessage(text) + "': expected I/N with 0 <= I < N (e.g. 0/4)";
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) throw InvalidInputError(what);
   BenchShard s;
@@ -206,24 +207,16 @@ std::string logFileName(const std::string& config, CheckerKind checker, const Be
 }
 
 std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names) {
-  const auto& all = problem.config.planners;
-  if (all.empty()) throw InvalidInputError(cfgName(problem) + ": the [planner] section names no planner");
-  std::string listed;
-  for (const scene::PlannerSpec& p : all) {
-    if (listed.find(" " + p.name + ",") == std::string::npos) listed += " " + p.name + ",";
+  return selectPlannerSpecs(problem.config.planners, names, cfgName(problem));
+}
+
+void checkBenchProblem(const Problem& problem) {
+  if (problem.name.size() > kMaxProblemNameBytes) {
+    throw InvalidInputError(cfgName(problem) + ": the problem name '" + clipForMessage(problem.name) +
+                            "' is too long: it names the experiment and the log files; at most " +
+                            std::to_string(kMaxProblemNameBytes) + " bytes");
   }
-  listed = listed.substr(1, listed.size() - 2);
-  for (const std::string& n : names) {
-    const bool found = std::any_of(all.begin(), all.end(), [&](const scene::PlannerSpec& p) { return p.name == n; });
-    if (!found) {
-      throw InvalidInputError("planner '" + n + "' is not in " + cfgName(problem) + " (its planners: " + listed + ")");
-    }
-  }
-  std::vector<scene::PlannerSpec> out;
-  for (const scene::PlannerSpec& p : all) {
-    if (names.empty() || std::find(names.begin(), names.end(), p.name) != names.end()) out.push_back(p);
-  }
-  return out;
+  checkStartAndGoal(problem);  // OMPL would only report every run unsolved
 }
 
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options, const BenchObserver& observer) {
@@ -254,6 +247,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
                             " runs per planner, so at most " + std::to_string(runs) + " shards");
   }
   const std::vector<scene::PlannerSpec> specs = selectPlanners(problem, options.planners);
+  checkBenchProblem(problem);
   const std::vector<int> run_indices = shardRuns(runs, shard);
   const int n = static_cast<int>(run_indices.size());
 

@@ -14,11 +14,13 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <mutex>
 #include <sstream>
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
+#include "mddual/query.h"
 
 namespace mddual::planning {
 
@@ -176,7 +178,7 @@ CheckerKind parseCheckerKind(const std::string& name) {
   for (CheckerKind k : allCheckerKinds()) {
     if (name == toString(k)) return k;
   }
-  throw InvalidInputError("unknown checker '" + name + "' (known: mdd, fcl, fcl-continuous)");
+  throw InvalidInputError("unknown checker '" + clipForMessage(name) + "' (known: mdd, fcl, fcl-continuous)");
 }
 
 std::vector<CheckerKind> parseCheckerList(const std::string& list) {
@@ -184,15 +186,17 @@ std::vector<CheckerKind> parseCheckerList(const std::string& list) {
   std::stringstream in(list);
   std::string item;
   while (std::getline(in, item, ',')) {
-    if (item.empty()) throw InvalidInputError("empty checker name in '" + list + "'");
+    if (item.empty()) throw InvalidInputError("empty checker name in '" + clipForMessage(list) + "'");
     const CheckerKind k = parseCheckerKind(item);
     for (CheckerKind seen : kinds) {
-      if (seen == k) throw InvalidInputError("checker '" + item + "' given twice in '" + list + "'");
+      if (seen == k) {
+        throw InvalidInputError("checker '" + item + "' given twice in '" + clipForMessage(list) + "'");
+      }
     }
     kinds.push_back(k);
   }
   if (kinds.empty() || (!list.empty() && list.back() == ',')) {
-    throw InvalidInputError("no checker in '" + list + "' (known: mdd, fcl, fcl-continuous)");
+    throw InvalidInputError("no checker in '" + clipForMessage(list) + "' (known: mdd, fcl, fcl-continuous)");
   }
   return kinds;
 }
@@ -227,6 +231,74 @@ Problem loadProblem(const std::filesystem::path& cfg) {
   scene::ProblemConfig config = scene::readProblemConfig(cfg, ourPlannerNames());
   scene::ProblemScene scene = scene::loadProblemScene(config);
   return makeProblem(std::move(config), std::move(scene));
+}
+
+std::string clipForMessage(const std::string& text) {
+  if (text.size() <= kMaxQuotedChars) return text;
+  return text.substr(0, kMaxQuotedChars) + "... (" + std::to_string(text.size()) + " bytes)";
+}
+
+namespace {
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+/// One state of checkStartAndGoal: `which` is "start" or "goal".
+void checkState(const Problem& problem, const std::string& which, const Eigen::Isometry3d& X_WR) {
+  const scene::ProblemScene& sc = *problem.scene;
+  const std::string where = cfgName(problem) + ": the " + which + " state";
+  const Eigen::Vector3d p_WR = X_WR.translation();
+  const bool planar = sc.space == scene::SpaceKind::kSE2 || sc.space == scene::SpaceKind::kR2;
+  const char* const axes[] = {"x", "y", "z"};
+  for (int k = 0; k < (planar ? 2 : 3); ++k) {
+    if (!(p_WR[k] >= sc.bounds.min()[k] && p_WR[k] <= sc.bounds.max()[k])) {
+      throw InvalidInputError(where + " is outside the bounds of the space: " + which + "." + axes[k] + " = " +
+                              number(p_WR[k]) + " is not in [" + number(sc.bounds.min()[k]) + ", " +
+                              number(sc.bounds.max()[k]) + "] (volume.min." + axes[k] + ", volume.max." + axes[k] +
+                              ")");
+    }
+  }
+  // Every (robot piece, world piece) pair whose boxes meet, by the exact test.
+  std::vector<std::string> pairs;
+  std::vector<int> candidates;
+  const auto& robot = sc.robot.pieces();
+  const auto& world = sc.world.pieces();
+  for (const scene::Piece& r : robot) {
+    candidates.clear();
+    sc.world.candidates(scene::transformedBox(r.box, X_WR), &candidates);
+    for (const int w : candidates) {
+      IntersectInput in;
+      in.a = &r.polytope;
+      in.X_WA = X_WR;
+      in.b = &world[static_cast<std::size_t>(w)].polytope;
+      const IntersectResult x = intersect(in);
+      if (!x.intersecting) continue;
+      pairs.push_back("robot piece \"" + clipForMessage(r.origin) + "\" " +
+                      (x.status == IntersectStatus::kTouching ? "touches" : "overlaps") + " world piece \"" +
+                      clipForMessage(world[static_cast<std::size_t>(w)].origin) + "\"");
+    }
+  }
+  if (pairs.empty()) return;
+  std::string named;
+  for (std::size_t i = 0; i < pairs.size() && i < kMaxCollisionsNamed; ++i) {
+    named += (i == 0 ? "" : "; ") + pairs[i];
+  }
+  if (pairs.size() > kMaxCollisionsNamed) {
+    named += "; and " + std::to_string(pairs.size() - kMaxCollisionsNamed) + " more pairs";
+  }
+  throw InvalidInputError(where + " (position " + number(p_WR.x()) + ", " + number(p_WR.y()) + ", " + number(p_WR.z()) +
+                          ") is in collision: " + named + " (exact check; touching counts as collision)");
+}
+
+}  // namespace
+
+void checkStartAndGoal(const Problem& problem) {
+  if (!problem.scene) throw InvalidInputError("checkStartAndGoal: the problem has no scene");
+  checkState(problem, "start", problem.scene->start);
+  checkState(problem, "goal", problem.scene->goal);
 }
 
 SpaceKind toPlanningKind(scene::SpaceKind kind) {

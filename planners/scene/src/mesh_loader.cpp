@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <system_error>
 
 #include "mddual/scene/loaders.h"
@@ -29,6 +31,25 @@ constexpr double kDegenerateRatio = 1e-10;
 constexpr double kPlaneTolerance = 1e-6;
 constexpr double kFloatTolerance = 5e-7;
 constexpr double kAreaTolerance = 1e-5;
+/// assimp stores vertex coordinates as 32-bit floats: a coordinate beyond
+/// this (FLT_MAX, about 3.4e38) in the file is read as infinity.
+constexpr double kFloatMax = static_cast<double>(std::numeric_limits<float>::max());
+/// Before it builds the hull, the convexity test looks for a witness of
+/// non-convexity (a triangle with mesh points beyond both sides of its plane)
+/// in at most this many point-plane evaluations (about 20 ms): a non-convex
+/// mesh, the common case, then never reaches qhull.
+constexpr std::size_t kWitnessBudget = std::size_t{1} << 24;
+/// A triangle the hull code rejects is a sliver, skipped, when its height is
+/// at most this fraction of its longest edge. The core's flatness test
+/// resolves a triangle's plane only to about 1e-16 / (height / edge)^2 of its
+/// size, so it rejects slivers up to a few 1e-7; skipping one moves the
+/// surface by at most its height (see the triangle loop below).
+constexpr double kSliverRatio = 1e-6;
+/// Warnings list at most this many triangle indices.
+constexpr std::size_t kMaxListedTriangles = 10;
+/// A hull error quoted in a warning or an error is cut to its first line and
+/// at most this many characters (qhull's reports run to kilobytes).
+constexpr std::size_t kMaxReasonChars = 200;
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
   Eigen::Matrix4d out;
@@ -36,36 +57,80 @@ Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
   return out;
 }
 
-/// Appends the vertices and triangles under `node`, with `parent` the
-/// accumulated transform of its ancestors (OMPL.app's extractVerticesAux and
-/// extractTrianglesAux: transform = parent * node).
-void collect(const aiScene& scene, const aiNode& node, const Eigen::Matrix4d& parent, detail::MeshData* out) {
-  const Eigen::Matrix4d T = parent * toEigen(node.mTransformation);
-  // Node transforms are affine (the last row is 0 0 0 1).
-  const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
-  const Eigen::Vector3d t = T.topRightCorner<3, 1>();
-  const auto apply = [&R, &t](const aiVector3D& v) -> Eigen::Vector3d {
-    return R * Eigen::Vector3d(static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)) + t;
-  };
-  for (unsigned int i = 0; i < node.mNumMeshes; ++i) {
-    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[i]];
-    for (unsigned int v = 0; v < mesh.mNumVertices; ++v) out->vertices.push_back(apply(mesh.mVertices[v]));
-    for (unsigned int f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices != 3) continue;  // lines and points are not geometry
-      for (int c = 0; c < 3; ++c) out->triangles.push_back(apply(mesh.mVertices[face.mIndices[c]]));
+/// A vertex as assimp read it that is not finite: why, in words. `index`
+/// counts the vertices in the order they are read.
+std::string nonFiniteVertex(const std::filesystem::path& file, std::size_t index, const aiVector3D& v) {
+  const char* axes = "xyz";
+  const float coordinates[3] = {v.x, v.y, v.z};
+  int axis = 0;
+  while (axis < 2 && std::isfinite(coordinates[axis])) ++axis;
+  const std::string where = detail::display(file) + ": vertex " + std::to_string(index) + " (as assimp numbers them)";
+  if (std::isnan(coordinates[axis])) return where + ": its " + axes[axis] + " coordinate is NaN";
+  std::ostringstream limit;
+  limit << kFloatMax;
+  return where + ": its " + axes[axis] + " coordinate overflows the 32-bit floats the mesh reader (assimp) uses " +
+         "(|" + axes[axis] + "| > " + limit.str() + "), or is infinite in the file";
+}
+
+/// Appends the vertices and triangles of the node tree under `root` (OMPL.app's
+/// extractVerticesAux and extractTrianglesAux: a node's transform is its
+/// parent's times its own). Depth first with an explicit stack, so a deep node
+/// tree cannot overflow the call stack. Throws SceneError for a vertex or a
+/// transform that is not finite.
+void collect(const aiScene& scene, const aiNode& root, const std::filesystem::path& file, detail::MeshData* out) {
+  std::vector<std::pair<const aiNode*, Eigen::Matrix4d>> stack = {{&root, Eigen::Matrix4d::Identity()}};
+  while (!stack.empty()) {
+    const auto [node, parent] = stack.back();
+    stack.pop_back();
+    const Eigen::Matrix4d T = parent * toEigen(node->mTransformation);
+    if (!T.allFinite()) {
+      throw SceneError(detail::display(file) + ": node " + detail::quote(node->mName.C_Str()) +
+                       ": its transform (composed with its parents') has a non-finite entry");
     }
+    // Node transforms are affine (the last row is 0 0 0 1).
+    const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+    const Eigen::Vector3d t = T.topRightCorner<3, 1>();
+    const auto apply = [&R, &t](const aiVector3D& v) -> Eigen::Vector3d {
+      return R * Eigen::Vector3d(static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z)) + t;
+    };
+    for (unsigned int i = 0; i < node->mNumMeshes; ++i) {
+      const aiMesh& mesh = *scene.mMeshes[node->mMeshes[i]];
+      for (unsigned int v = 0; v < mesh.mNumVertices; ++v) {
+        // Checked before the transform, which would spread a NaN to every axis.
+        const aiVector3D& p = mesh.mVertices[v];
+        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) {
+          throw SceneError(nonFiniteVertex(file, out->vertices.size(), p));
+        }
+        out->vertices.push_back(apply(p));
+      }
+      for (unsigned int f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        if (face.mNumIndices != 3) continue;  // lines and points are not geometry
+        for (int c = 0; c < 3; ++c) out->triangles.push_back(apply(mesh.mVertices[face.mIndices[c]]));
+      }
+    }
+    // Children pushed last first, so they are visited in order.
+    for (unsigned int c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], T);
   }
-  for (unsigned int c = 0; c < node.mNumChildren; ++c) collect(scene, *node.mChildren[c], T, out);
 }
 
 double triangleDoubleArea(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   return (b - a).cross(c - a).norm();
 }
 
+double longestEdgeSquared(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+}
+
 bool degenerate(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-  return !(triangleDoubleArea(a, b, c) > kDegenerateRatio * longest);
+  return !(triangleDoubleArea(a, b, c) > kDegenerateRatio * longestEdgeSquared(a, b, c));
+}
+
+/// The triangle's height over its longest edge (0 for coincident corners):
+/// every point of the triangle is within this distance of that edge.
+double heightOverLongestEdge(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const double longest = std::sqrt(longestEdgeSquared(a, b, c));
+  return longest > 0.0 ? triangleDoubleArea(a, b, c) / longest : 0.0;
 }
 
 /// Surface area of a hull (a flat hull: the area of its polygon, once).
@@ -111,9 +176,85 @@ bool equalsHull(const std::vector<Eigen::Vector3d>& tri, const ConvexPolytope& h
   return std::abs(area - hull_area) <= kAreaTolerance * hull_area;
 }
 
+/// True when some triangle has mesh points more than plane_tol beyond both
+/// sides of its plane: that triangle lies in no supporting plane of the hull,
+/// so the mesh is not convex (equalsHull would say false). Gives up (false)
+/// once kWitnessBudget point-plane evaluations are spent.
+bool nonConvexityWitness(const std::vector<Eigen::Vector3d>& tri, double plane_tol) {
+  std::vector<Eigen::Vector3d> points = tri;
+  const auto less = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+  };
+  std::sort(points.begin(), points.end(), less);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  std::size_t budget = kWitnessBudget;
+  for (std::size_t t = 0; t < tri.size(); t += 3) {
+    if (points.size() > budget) return false;
+    budget -= points.size();
+    const Eigen::Vector3d& a = tri[t];
+    const Eigen::Vector3d n = (tri[t + 1] - a).cross(tri[t + 2] - a).normalized();
+    bool above = false;
+    bool below = false;
+    for (const Eigen::Vector3d& p : points) {
+      const double s = n.dot(p - a);
+      above = above || s > plane_tol;
+      below = below || s < -plane_tol;
+      if (above && below) return true;
+    }
+  }
+  return false;
+}
+
+/// "triangles 3, 17 and 2 more" style list of file indices.
+std::string triangleList(const std::vector<int>& indices) {
+  std::string s = indices.size() == 1 ? "triangle " : "triangles ";
+  for (std::size_t i = 0; i < indices.size() && i < kMaxListedTriangles; ++i) {
+    s += (i == 0 ? "" : ", ") + std::to_string(indices[i]);
+  }
+  if (indices.size() > kMaxListedTriangles) {
+    s += " and " + std::to_string(indices.size() - kMaxListedTriangles) + " more";
+  }
+  return s;
+}
+
+std::string shortNumber(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
 }  // namespace
 
 namespace detail {
+
+std::string briefReason(const std::string& message) {
+  std::string line = message.substr(0, message.find('\n'));
+  if (line.size() > kMaxReasonChars) line = line.substr(0, kMaxReasonChars) + "...";
+  return line;
+}
+
+ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull) {
+  ConvexityCheck check;
+  if (nonConvexityWitness(tri, plane_tol)) return check;
+  // The hull here only decides whether the mesh is convex: when qhull cannot
+  // build it (precision errors on large, nearly coplanar meshes, slivers),
+  // the mesh is taken as non-convex, which is always correct (its triangles
+  // are its exact surface), only slower to query than one convex piece.
+  try {
+    check.hull = build_hull(tri);
+  } catch (const HullError& e) {
+    check.hull_error = briefReason(e.what());
+  } catch (const NumericalError& e) {
+    check.hull_error = briefReason(e.what());
+  } catch (const DegenerateGeometryError& e) {
+    check.hull_error = briefReason(e.what());
+  }
+  if (!check.hull_error.empty()) return check;
+  check.has_hull = true;
+  check.convex = equalsHull(tri, check.hull, plane_tol);
+  return check;
+}
 
 void requireFile(const std::filesystem::path& file) {
   std::error_code ec;
@@ -130,6 +271,7 @@ void requirePositiveTolerance(double tolerance, const std::string& what) {
 
 MeshData readMesh(const std::filesystem::path& file) {
   requireFile(file);
+  if (isXmlMesh(file)) requireShallowXml(file);  // assimp's COLLADA reader recurses per nested node
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(file.string(), kAssimpFlags);
   if (scene == nullptr) {
@@ -139,9 +281,12 @@ MeshData readMesh(const std::filesystem::path& file) {
     throw SceneError(display(file) + ": the file contains no mesh");
   }
   MeshData data;
-  collect(*scene, *scene->mRootNode, Eigen::Matrix4d::Identity(), &data);
-  for (const Eigen::Vector3d& v : data.vertices) {
-    if (!v.allFinite()) throw SceneError(display(file) + ": a vertex has a non-finite coordinate");
+  collect(*scene, *scene->mRootNode, file, &data);
+  for (std::size_t i = 0; i < data.vertices.size(); ++i) {
+    if (!data.vertices[i].allFinite()) {
+      throw SceneError(display(file) + ": vertex " + std::to_string(i) +
+                       " (as assimp numbers them) is not finite once the node transforms are applied");
+    }
   }
   if (data.triangles.empty()) throw SceneError(display(file) + ": the mesh has no triangles");
   return data;
@@ -164,16 +309,25 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   out.mean_vertex = mean;
   out.shift = options.recentre_mesh ? mean : Eigen::Vector3d::Zero();
 
-  // Posed, non-degenerate triangles.
+  // Posed triangles; the degenerate ones (zero area, repeated or collinear
+  // corners) are set aside with their heights.
   std::vector<Eigen::Vector3d> tri;
   std::vector<int> tri_index;  // index of each kept triangle in the file
+  std::vector<int> skipped;    // file indices of the triangles that are no piece
+  double skipped_height = 0.0;
   tri.reserve(data.triangles.size());
   for (std::size_t t = 0; t < data.triangles.size(); t += 3) {
     Eigen::Vector3d p[3];
     for (int c = 0; c < 3; ++c)
       p[c] = X_OM * (scale.cwiseProduct(data.triangles[t + static_cast<std::size_t>(c)]) - out.shift);
+    if (!(p[0].allFinite() && p[1].allFinite() && p[2].allFinite())) {
+      throw SceneError(display(file) + ": triangle " + std::to_string(t / 3) +
+                       ": a corner is not finite once scaled and posed (the scale or pose is too large)");
+    }
     if (degenerate(p[0], p[1], p[2])) {
       ++out.degenerate_triangles;
+      skipped.push_back(static_cast<int>(t / 3));
+      skipped_height = std::max(skipped_height, heightOverLongestEdge(p[0], p[1], p[2]));
       continue;
     }
     tri.insert(tri.end(), {p[0], p[1], p[2]});
@@ -183,12 +337,20 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
     throw SceneError(display(file) + ": all " + std::to_string(out.triangles) + " triangles are degenerate");
   }
 
-  ConvexPolytope hull;
-  try {
-    hull = ConvexPolytope::fromPoints(tri);
-  } catch (const Error& e) {
-    throw SceneError(display(file) + ": cannot build the hull of the mesh: " + e.what());
+  std::vector<Piece> pieces;
+  if (options.mesh_convex_hull) {
+    // The hull is asked for: here its failure is the load's.
+    ConvexPolytope hull;
+    try {
+      hull = ConvexPolytope::fromPoints(tri);
+    } catch (const Error& e) {
+      throw SceneError(display(file) + ": cannot build the convex hull of its " + std::to_string(tri.size() / 3) +
+                       " triangles (the mesh_convex_hull option): " + briefReason(e.what()));
+    }
+    pieces.push_back(Piece::make(std::move(hull), PieceKind::kConvex, origin_prefix + ": convex"));
+    return pieces;
   }
+
   Eigen::AlignedBox3d box;
   box.setEmpty();
   double largest = 0.0;
@@ -197,28 +359,83 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
     largest = std::max(largest, p.cwiseAbs().maxCoeff());
   }
   const double plane_tol = kPlaneTolerance * box.diagonal().norm() + kFloatTolerance * largest;
-  out.convex = equalsHull(tri, hull, plane_tol);
-
-  std::vector<Piece> pieces;
-  if (out.convex || options.mesh_convex_hull) {
-    pieces.push_back(Piece::make(std::move(hull), PieceKind::kConvex, origin_prefix + ": convex"));
+  ConvexityCheck check = checkConvexity(tri, plane_tol, &ConvexPolytope::fromPoints);
+  out.convex = check.convex;
+  if (!check.hull_error.empty()) {
+    out.hull_failed = true;
+    out.warnings.push_back(display(file) + ": the convex hull that decides whether the mesh is convex could not be " +
+                           "built (" + check.hull_error + "); the mesh is loaded as its " +
+                           std::to_string(tri.size() / 3) + " triangles, which is exact but slower if it is convex");
+  }
+  if (out.convex) {
+    pieces.push_back(Piece::make(std::move(check.hull), PieceKind::kConvex, origin_prefix + ": convex"));
     return pieces;
   }
+
+  // One piece per triangle. A sliver the hull code cannot make a polytope of
+  // (one it calls collinear, or whose plane qhull cannot resolve) is skipped
+  // like a degenerate one.
+  //
+  // Why skipping is safe, and when it is not: a skipped triangle lies within
+  // its height h of its longest edge (h below 1e-10 of that edge for a
+  // degenerate one, below kSliverRatio for a sliver). In a closed or
+  // well-connected mesh that edge is shared with a neighbouring triangle,
+  // which is kept: any body that touches the skipped triangle comes within h
+  // of the neighbour, so distances and contacts change by at most h (the
+  // warning gives the largest h), and only a body thinner than h could pass
+  // through the gap. A triangle whose edges are shared with no kept triangle
+  // (an isolated sliver, e.g. a lone strip that models a wire) is lost
+  // outright: the warning names it so that the user can check.
+  //
+  // A well-shaped triangle the hull code rejects (a small triangle far from
+  // the origin, where the core's round-off exceeds its flatness tolerance) is
+  // not skipped: that would open a hole as large as the triangle, and a
+  // planner would go through it. The load fails and says so.
   pieces.reserve(tri_index.size());
   for (std::size_t i = 0; i < tri_index.size(); ++i) {
     const std::vector<Eigen::Vector3d> corners(tri.begin() + static_cast<std::ptrdiff_t>(3 * i),
                                                tri.begin() + static_cast<std::ptrdiff_t>(3 * i + 3));
+    std::string error;
     try {
       pieces.push_back(Piece::make(ConvexPolytope::fromPoints(corners), PieceKind::kTriangle,
                                    origin_prefix + ": triangle " + std::to_string(tri_index[i])));
-    } catch (const DegenerateGeometryError&) {
-      ++out.degenerate_triangles;  // a sliver the hull code calls collinear
+      continue;
+    } catch (const DegenerateGeometryError& e) {
+      error = e.what();
+    } catch (const HullError& e) {
+      error = e.what();
+    } catch (const NumericalError& e) {
+      error = e.what();
     } catch (const Error& e) {
-      throw SceneError(display(file) + ": triangle " + std::to_string(tri_index[i]) + ": " + e.what());
+      throw SceneError(display(file) + ": triangle " + std::to_string(tri_index[i]) +
+                       ": cannot build its polytope: " + briefReason(e.what()));
     }
+    const double height = heightOverLongestEdge(corners[0], corners[1], corners[2]);
+    const double longest = std::sqrt(longestEdgeSquared(corners[0], corners[1], corners[2]));
+    if (!(height <= kSliverRatio * longest)) {
+      const double distance = std::max({corners[0].norm(), corners[1].norm(), corners[2].norm()});
+      throw SceneError(
+          display(file) + ": triangle " + std::to_string(tri_index[i]) +
+          ": the hull code cannot make a polytope of it although it is no sliver (longest edge " +
+          shortNumber(longest) + ", height " + shortNumber(height) + ", at " + shortNumber(distance) +
+          " from the origin: small triangles far from the origin exceed the core's precision): " + briefReason(error));
+    }
+    ++out.degenerate_triangles;
+    skipped.push_back(tri_index[i]);
+    skipped_height = std::max(skipped_height, height);
   }
   if (pieces.empty()) {
-    throw SceneError(display(file) + ": all " + std::to_string(out.triangles) + " triangles are degenerate");
+    throw SceneError(display(file) + ": none of its " + std::to_string(out.triangles) +
+                     " triangles is a polytope (all are degenerate or slivers)");
+  }
+  std::sort(skipped.begin(), skipped.end());
+  out.skipped_triangles = skipped;
+  if (!skipped.empty()) {
+    out.warnings.push_back(display(file) + ": skipped " + std::to_string(skipped.size()) + " of " +
+                           std::to_string(out.triangles) + " triangles that are not polytopes (zero area, " +
+                           "repeated or collinear corners, or slivers): " + triangleList(skipped) +
+                           "; none extends more than " + shortNumber(skipped_height) +
+                           " from its longest edge, which neighbouring triangles share in a closed mesh");
   }
   return pieces;
 }

@@ -17,7 +17,7 @@ ProblemScene loadProblemScene(const ProblemConfig& config, const LoadOptions& op
     if (detail::isUrdf(robot_file)) {
       LoadOptions o = options;
       o.recentre_mesh = false;
-      scene.robot = loadBody(robot_file, o);
+      scene.robot = loadBody(robot_file, o, &scene.warnings);
     } else {
       // OMPL.app: the robot mesh is shifted by its mean vertex, whose z is
       // zeroed for planar problems (RigidBodyGeometry's robotShift).
@@ -27,10 +27,12 @@ ProblemScene loadProblemScene(const ProblemConfig& config, const LoadOptions& op
       o.recentre_mesh = false;
       Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
       X.translation() = -shift;
-      scene.robot = RigidBody(meshPieces(robot_file, Eigen::Vector3d::Ones(), X, o), robot_file.stem().string());
+      MeshInfo info;
+      scene.robot = RigidBody(meshPieces(robot_file, Eigen::Vector3d::Ones(), X, o, &info), robot_file.stem().string());
       scene.robot_shift = shift;
+      scene.warnings = info.warnings;
     }
-    scene.world = loadWorld(world_file, options);
+    scene.world = loadWorld(world_file, options, &scene.warnings);
   } catch (const SceneError& e) {
     throw SceneError(cfg_name + ": " + e.what());
   }

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mddual/scene/loaders.h"
@@ -34,8 +35,33 @@ struct MeshData {
   std::vector<Eigen::Vector3d> triangles;  ///< three corners per triangle
 };
 
-/// Reads a mesh file with assimp. Throws SceneError naming the file.
+/// Reads a mesh file with assimp. Throws SceneError naming the file (and the
+/// vertex, for a coordinate that is NaN or overflows assimp's 32-bit floats).
 MeshData readMesh(const std::filesystem::path& file);
+
+/// The first line of an error message, cut to a couple of hundred characters
+/// (qhull's reports run to kilobytes and must not reach the user raw).
+std::string briefReason(const std::string& message);
+
+/// Builds a hull (ConvexPolytope::fromPoints; tests pass one that fails).
+using HullBuilder = ConvexPolytope (*)(const std::vector<Eigen::Vector3d>&);
+
+/// The outcome of checkConvexity.
+struct ConvexityCheck {
+  bool convex = false;     ///< the triangles are the boundary of their hull
+  bool has_hull = false;   ///< `hull` was built
+  ConvexPolytope hull;     ///< the hull of the triangles' corners (when has_hull)
+  std::string hull_error;  ///< why the hull could not be built (briefReason), else empty
+};
+
+/// Decides whether the triangles (three corners each, none degenerate) are
+/// the boundary of a convex body, within plane_tol: first a bounded search
+/// for a triangle with corners beyond both sides of its plane (then the mesh
+/// is not convex and no hull is built), then `build_hull` and a comparison of
+/// the triangles with the hull. A HullError, NumericalError or
+/// DegenerateGeometryError from build_hull never escapes: the mesh is then
+/// reported not convex, with the reason in hull_error.
+ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull);
 
 /// meshPieces with the pieces' origins prefixed by `origin_prefix`
 /// ("<prefix>: triangle 3").
@@ -44,11 +70,39 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
                                         const std::string& origin_prefix, MeshInfo* info);
 
 /// The collision pieces of a URDF file in its root link's frame; `robot_name`
-/// receives the URDF's robot name. Throws SceneError naming the file, link
-/// and collision element.
-std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name);
+/// receives the URDF's robot name; `warnings` (if not null) receives the
+/// meshes' load warnings, each prefixed with its link and collision element.
+/// Throws SceneError naming the file, link and collision element.
+std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name,
+                              std::vector<std::string>* warnings);
 
 /// True when `file`'s extension is .urdf (any case).
 bool isUrdf(const std::filesystem::path& file);
+
+/// True for mesh formats that are XML (COLLADA .dae, any case), which
+/// readMesh checks with requireShallowXml before assimp parses them.
+bool isXmlMesh(const std::filesystem::path& file);
+
+/// Deepest element nesting an XML file may have. XML parsers (urdfdom's
+/// TinyXML, assimp's COLLADA reader) recurse once per level, so a file nested
+/// tens of thousands deep overflows their stack; real URDF and COLLADA files
+/// nest about ten deep.
+constexpr int kMaxXmlElementDepth = 256;
+
+/// Element nesting found by xmlElementDepth.
+struct XmlDepth {
+  int depth = 0;  ///< deepest nesting seen (the scan stops once it exceeds the limit)
+  int line = 0;   ///< line (from 1) of the start tag that reached it; 0 without elements
+};
+
+/// The element nesting of XML text, by a linear scan that skips comments,
+/// CDATA sections, processing instructions, declarations (with an internal
+/// subset) and quoted attribute values; stops at the first start tag deeper
+/// than `limit`. Not a validator: malformed text is left to the parser.
+XmlDepth xmlElementDepth(std::string_view text, int limit = kMaxXmlElementDepth);
+
+/// Throws SceneError (naming the file, the depth and the line) when `file`
+/// nests its elements deeper than kMaxXmlElementDepth, or cannot be read.
+void requireShallowXml(const std::filesystem::path& file);
 
 }  // namespace mddual::scene::detail

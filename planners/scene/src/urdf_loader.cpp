@@ -95,7 +95,7 @@ std::filesystem::path meshPath(const std::string& filename, const std::filesyste
 /// Pieces of one collision element, in the root frame; X_RL is the link's pose.
 void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_RL,
                   const std::filesystem::path& urdf_dir, const LoadOptions& options, const std::string& where,
-                  std::vector<Piece>* out) {
+                  std::vector<Piece>* out, std::vector<std::string>* warnings) {
   if (!collision.geometry) throw SceneError(where + ": no geometry");
   const Eigen::Isometry3d X_RG = X_RL * toIsometry(collision.origin);
   const double tol = options.primitive_tolerance;
@@ -127,11 +127,15 @@ void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_R
       LoadOptions mesh_options = options;
       mesh_options.recentre_mesh = false;  // a URDF places its meshes itself
       std::vector<Piece> pieces;
+      MeshInfo info;
       try {
         pieces = meshPiecesWithOrigin(path, scale, X_RG, mesh_options, where + " (mesh " + quote(mesh.filename) + ")",
-                                      nullptr);
+                                      &info);
       } catch (const SceneError& e) {
         throw SceneError(where + ": mesh " + quote(mesh.filename) + ": " + e.what());
+      }
+      if (warnings != nullptr) {
+        for (const std::string& w : info.warnings) warnings->push_back(where + ": " + w);
       }
       for (Piece& p : pieces) out->push_back(std::move(p));
       return;
@@ -149,9 +153,11 @@ bool isUrdf(const std::filesystem::path& file) {
   return ext == ".urdf";
 }
 
-std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name) {
+std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name,
+                              std::vector<std::string>* warnings) {
   requireFile(file);
   requirePositiveTolerance(options.primitive_tolerance, display(file));
+  requireShallowXml(file);  // urdfdom's XML parser recurses once per nesting level
   const urdf::ModelInterfaceSharedPtr model = parse(file);
   if (robot_name != nullptr) *robot_name = model->getName();
   const urdf::LinkConstSharedPtr root = model->getRoot();
@@ -168,7 +174,7 @@ std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptio
     for (std::size_t i = 0; i < link->collision_array.size(); ++i) {
       const std::string where = name + ": link " + quote(link->name) + ", collision " + std::to_string(i);
       if (!link->collision_array[i]) continue;
-      addCollision(*link->collision_array[i], X_RL, dir, options, where, &pieces);
+      addCollision(*link->collision_array[i], X_RL, dir, options, where, &pieces, warnings);
     }
     for (const urdf::JointSharedPtr& joint : link->child_joints) {
       const urdf::LinkConstSharedPtr child = model->getLink(joint->child_link_name);

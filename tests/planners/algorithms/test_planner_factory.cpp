@@ -1,8 +1,16 @@
-// The planner factory: OMPL.app's names, ours, parameters, and errors.
+// The planner factory: OMPL.app's names, OMPL's, ours, parameters, the
+// planners `mddual bench --planners` selects, and errors.
 #include <gtest/gtest.h>
 
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include <algorithm>
+#include <cctype>
+#include <set>
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
@@ -12,6 +20,11 @@ namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
+namespace og = ompl::geometric;
+
+/// Seconds each planner gets in the short solves below (no timing is
+/// asserted: a planner only has to construct, set up and run).
+constexpr double kShortSolve = 0.05;
 
 ob::SpaceInformationPtr se3() {
   auto space = std::make_shared<ob::SE3StateSpace>();
@@ -39,6 +52,155 @@ TEST(PlannerFactory, BuildsEveryPlannerAConfigMayName) {
   const auto si = se3();
   for (const std::string& name : scene::knownPlannerNames()) {
     EXPECT_NE(makePlanner(name, si), nullptr) << name;
+  }
+}
+
+/// A small problem: the space's bounds are [-1, 1] (position), a ball of
+/// radius 0.3 at the origin is the obstacle, start and goal on either side.
+std::shared_ptr<og::SimpleSetup> ballProblem(bool planar) {
+  ob::RealVectorBounds bounds(planar ? 2 : 3);
+  bounds.setLow(-1);
+  bounds.setHigh(1);
+  ob::StateSpacePtr space;
+  if (planar) {
+    auto se2 = std::make_shared<ob::SE2StateSpace>();
+    se2->setBounds(bounds);
+    space = se2;
+  } else {
+    auto se3 = std::make_shared<ob::SE3StateSpace>();
+    se3->setBounds(bounds);
+    space = se3;
+  }
+  auto ss = std::make_shared<og::SimpleSetup>(space);
+  ss->setStateValidityChecker([planar](const ob::State* s) {
+    double x = 0;
+    double y = 0;
+    double z = 0;
+    if (planar) {
+      const auto* p = s->as<ob::SE2StateSpace::StateType>();
+      x = p->getX();
+      y = p->getY();
+    } else {
+      const auto* p = s->as<ob::SE3StateSpace::StateType>();
+      x = p->getX();
+      y = p->getY();
+      z = p->getZ();
+    }
+    return x * x + y * y + z * z > 0.3 * 0.3;
+  });
+  ob::ScopedState<> start(space);
+  ob::ScopedState<> goal(space);
+  start = std::vector<double>(space->getDimension() == 3 ? 3 : 7, 0.0);
+  goal = std::vector<double>(space->getDimension() == 3 ? 3 : 7, 0.0);
+  start[0] = -0.8;
+  goal[0] = 0.8;
+  if (!planar) {
+    start[6] = 1.0;  // identity quaternion (x, y, z, w)
+    goal[6] = 1.0;
+  }
+  ss->setStartAndGoalStates(start, goal, 0.05);
+  return ss;
+}
+
+// Issue 9 item 8: every planner name (OMPL.app's, the rest of OMPL 1.5's
+// geometric planners that need only the space information, ours) builds a
+// planner that sets up and runs briefly on a small SE(2) and SE(3) problem;
+// a path it calls exact is valid.
+TEST(PlannerFactory, EveryNameSolvesASmallProblemBriefly) {
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  ompl::RNG::setSeed(42);
+  for (const bool planar : {true, false}) {
+    for (const std::string& name : plannerNames()) {
+      SCOPED_TRACE(name + (planar ? " (SE2)" : " (SE3)"));
+      const auto ss = ballProblem(planar);
+      ob::PlannerPtr planner;
+      ASSERT_NO_THROW(planner = makePlanner(name, ss->getSpaceInformation()));
+      ss->setPlanner(planner);
+      ob::PlannerStatus status;
+      ASSERT_NO_THROW(status = ss->solve(kShortSolve));
+      const auto code = ob::PlannerStatus::StatusType(status);
+      EXPECT_TRUE(code == ob::PlannerStatus::EXACT_SOLUTION || code == ob::PlannerStatus::APPROXIMATE_SOLUTION ||
+                  code == ob::PlannerStatus::TIMEOUT)
+          << status.asString();
+      if (code == ob::PlannerStatus::EXACT_SOLUTION) {
+        EXPECT_TRUE(ss->getSolutionPath().check());
+      }
+    }
+  }
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+}
+
+// The names OMPL gives its planners (Planner::getName()) are accepted in any
+// case and stand for the registry's names.
+TEST(PlannerFactory, OmplsOwnNamesAndAnyCaseAreAccepted) {
+  const auto si = se3();
+  for (const std::string& name : plannerNames()) {
+    const std::string own = makePlanner(name, si)->getName();
+    std::string upper = name;
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+    EXPECT_EQ(canonicalPlannerName(own), name) << own;
+    EXPECT_EQ(canonicalPlannerName(upper), name) << upper;
+  }
+  EXPECT_EQ(makePlanner("KPIECE1", si)->getName(), "KPIECE1");
+  EXPECT_EQ(canonicalPlannerName("kpiece1"), "kpiece");
+  EXPECT_EQ(canonicalPlannerName("SPARStwo"), "spars2");
+  EXPECT_EQ(canonicalPlannerName("rrtt"), "");
+  EXPECT_EQ(canonicalPlannerName(""), "");
+}
+
+scene::PlannerSpec spec(const std::string& name, std::vector<std::pair<std::string, std::string>> params, int line) {
+  scene::PlannerSpec p;
+  p.name = name;
+  p.params = std::move(params);
+  p.line = line;
+  return p;
+}
+
+std::vector<std::string> namesOf(const std::vector<scene::PlannerSpec>& specs) {
+  std::vector<std::string> out;
+  for (const auto& p : specs) out.push_back(p.name);
+  return out;
+}
+
+// `mddual bench --planners`: the cfg's instances when it lists the planner,
+// one with OMPL's defaults when it does not.
+TEST(PlannerSelection, ListedInstancesOrDefaults) {
+  const std::vector<scene::PlannerSpec> listed = {spec("rrt", {{"range", "5"}}, 10), spec("rrtconnect", {}, 11),
+                                                  spec("rrt", {{"range", "9"}}, 12)};
+  EXPECT_EQ(selectPlannerSpecs(listed, {}, "a.cfg"), listed);
+  const auto rrt = selectPlannerSpecs(listed, {"rrt"}, "a.cfg");
+  ASSERT_EQ(rrt.size(), 2u);
+  EXPECT_EQ(rrt[0].params, (std::vector<std::pair<std::string, std::string>>{{"range", "5"}}));
+  EXPECT_EQ(rrt[1].line, 12);
+  EXPECT_EQ(namesOf(selectPlannerSpecs(listed, {"RRT"}, "a.cfg")), (std::vector<std::string>{"rrt", "rrt"}));
+  const auto mixed = selectPlannerSpecs(listed, {"KPIECE1", "rrtconnect", "prm", "prm", "kpiece"}, "a.cfg");
+  EXPECT_EQ(namesOf(mixed), (std::vector<std::string>{"rrtconnect", "kpiece", "prm"}));
+  EXPECT_TRUE(mixed[1].params.empty());
+  EXPECT_EQ(mixed[1].line, 0);
+  // A cfg without planners runs the ones asked for.
+  EXPECT_EQ(namesOf(selectPlannerSpecs({}, {"rrtconnect"}, "a.cfg")), (std::vector<std::string>{"rrtconnect"}));
+}
+
+TEST(PlannerSelection, ErrorsNameTheCfgAndTheKnownPlanners) {
+  const std::vector<scene::PlannerSpec> listed = {spec("rrt", {}, 3), spec("rrtconnect", {}, 4), spec("rrt", {}, 5)};
+  try {
+    selectPlannerSpecs(listed, {"rrtconnect", "rrtt"}, "a.cfg");
+    FAIL() << "no error";
+  } catch (const InvalidInputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("unknown planner 'rrtt': not in a.cfg (its planners: rrt, rrtconnect) and not a planner name "
+                     "(known: abitstar, "),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("mdd_rrtconnect"), std::string::npos) << m;
+  }
+  try {
+    selectPlannerSpecs({}, {}, "b.cfg");
+    FAIL() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("b.cfg: the [planner] section names no planner"), std::string::npos)
+        << e.what();
   }
 }
 

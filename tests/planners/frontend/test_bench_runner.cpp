@@ -266,8 +266,23 @@ TEST_F(BenchRunner, OptionErrors) {
   expectError([](BenchOptions& o) { o.mem_limit = 1e300; }, "memory limit must be a positive number of MB, at most");
   expectError([](BenchOptions& o) { o.checkers.clear(); }, "no checker");
   expectError([](BenchOptions& o) { o.shard = BenchShard{2, 3}; }, "only 2 runs per planner, so at most 2 shards");
-  expectError([](BenchOptions& o) { o.planners = {"rrt"}; }, "planner 'rrt' is not in tiny.cfg");
+  expectError([](BenchOptions& o) { o.planners = {"rrtt"}; }, "unknown planner 'rrtt': not in tiny.cfg");
+  // A start in collision: refused before anything runs (OMPL would report
+  // every run unsolved, "Invalid start"); the message is checkStartAndGoal's.
+  Eigen::Isometry3d start = problem_.scene->start;
+  start.translation().x() = 5.0;
+  scene::ProblemScene moved = *problem_.scene;
+  moved.start = start;
+  problem_ = makeProblem(problem_.config, moved);
+  expectError([](BenchOptions&) {}, "tiny.cfg: the start state (position 5, 5, 5) is in collision: robot piece");
+  // A name too long for the log files' names.
+  scene::ProblemConfig long_name = problem_.config;
+  long_name.name = std::string(kMaxProblemNameBytes + 1, 'n');
+  problem_ = makeProblem(long_name, *problem_.scene);
+  expectError([](BenchOptions&) {}, "tiny.cfg: the problem name '" + std::string(kMaxProblemNameBytes + 1, 'n') +
+                                        "' is too long: it names the experiment and the log files; at most 128 bytes");
   EXPECT_FALSE(fs::exists(dir_ / "err" / "tiny-mdd.log"));
+  EXPECT_FALSE(fs::exists(dir_ / "err"));
 }
 
 }  // namespace

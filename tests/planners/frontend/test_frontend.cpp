@@ -11,8 +11,13 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mddual/error.h"
 #include "mddual/planning/bench_runner.h"
@@ -334,8 +339,11 @@ TEST_F(FrontendSetup, Errors) {
   EXPECT_EQ(selectPlanners(p, {}).size(), 2u);
   ASSERT_EQ(selectPlanners(p, {"mdd_rrtconnect"}).size(), 1u);
   EXPECT_EQ(selectPlanners(p, {"mdd_rrtconnect"})[0].name, "mdd_rrtconnect");
-  expectError([&] { selectPlanners(p, {"prm"}); },
-              "planner 'prm' is not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)");
+  // A planner the cfg does not list runs with OMPL's defaults (issue 9 item 8).
+  ASSERT_EQ(selectPlanners(p, {"prm"}).size(), 1u);
+  EXPECT_EQ(selectPlanners(p, {"prm"})[0].name, "prm");
+  expectError([&] { selectPlanners(p, {"prn"}); },
+              "unknown planner 'prn': not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)");
   // Bad config files name the file and line.
   {
     testing::TinyConfigText text;
@@ -344,6 +352,87 @@ TEST_F(FrontendSetup, Errors) {
     expectError([&] { loadProblem(cfg); }, "tiny.cfg:26");
   }
   expectError([&] { loadProblem(dir_.path() / "missing.cfg"); }, "missing.cfg");
+}
+
+/// The tiny cfg in `dir` with lines of it replaced (first -> second).
+fs::path tinyConfigWith(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& edits) {
+  const fs::path cfg = testing::writeTinyConfig(dir);
+  std::ifstream in(cfg);
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::string edited = text.str();
+  for (const auto& [from, to] : edits) {
+    const std::size_t at = edited.find(from);
+    if (at == std::string::npos) throw std::runtime_error("no '" + from + "' in the tiny cfg");
+    edited.replace(at, from.size(), to);
+  }
+  testing::writeTextFile(cfg, edited);
+  return cfg;
+}
+
+TEST_F(FrontendSetup, StartAndGoalAreCheckedBeforePlanning) {
+  // The tiny cfg's own start and goal are free and within the bounds.
+  EXPECT_NO_THROW(checkStartAndGoal(loadProblem(testing::writeTinyConfig(dir_.path() / "good"))));
+  const std::string robot = "robot piece \"robot.urdf: link 'cube_link', collision 0 (box)\"";
+  const std::string wall0 = "world piece \"world.urdf: link 'wall_link', collision 0 (box)\"";
+  const std::string wall1 = "world piece \"world.urdf: link 'wall_link', collision 1 (box)\"";
+  const std::string tail = " (exact check; touching counts as collision)";
+  struct Case {
+    std::vector<std::pair<std::string, std::string>> edits;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      // The 0.5 m robot cube inside the wall (x in [4.99, 5.01], y < 6.5).
+      {{{"start.x = 2\n", "start.x = 5\n"}},
+       "tiny.cfg: the start state (position 5, 5, 5) is in collision: " + robot + " overlaps " + wall0 + tail},
+      // Its face on the wall's face: touching is a collision for the exact checker.
+      {{{"goal.x = 8\n", "goal.x = 5.26\n"}},
+       "tiny.cfg: the goal state (position 5.26, 5, 5) is in collision: " + robot + " touches " + wall0 + tail},
+      // In the wall above the door (y in [6.5, 8.5]): the other piece.
+      {{{"start.x = 2\n", "start.x = 5\n"}, {"start.y = 5\n", "start.y = 8.6\n"}},
+       "tiny.cfg: the start state (position 5, 8.6, 5) is in collision: " + robot + " overlaps " + wall1 + tail},
+      {{{"goal.x = 8\n", "goal.x = 12\n"}},
+       "tiny.cfg: the goal state is outside the bounds of the space: goal.x = 12 is not in [0, 10] (volume.min.x, "
+       "volume.max.x)"},
+      {{{"start.z = 5\n", "start.z = -0.5\n"}},
+       "tiny.cfg: the start state is outside the bounds of the space: start.z = -0.5 is not in [0, 10] (volume.min.z, "
+       "volume.max.z)"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    SCOPED_TRACE(c.edits[0].second);
+    const Problem p = loadProblem(tinyConfigWith(dir_.path() / std::to_string(i), c.edits));
+    try {
+      checkStartAndGoal(p);
+      ADD_FAILURE() << "no error";
+    } catch (const InvalidInputError& e) {
+      EXPECT_EQ(std::string(e.what()), c.message);
+    }
+  }
+  // Five world pieces on the start: three named, two counted.
+  const fs::path cfg = testing::writeTinyConfig(dir_.path() / "crowd");
+  std::string boxes;
+  for (int k = 0; k < 5; ++k) {
+    boxes += "<collision><origin xyz=\"2 5 " + std::to_string(4.8 + 0.1 * k) +
+             "\"/><geometry><box size=\"0.1 0.1 0.1\"/></geometry></collision>";
+  }
+  testing::writeTextFile(dir_.path() / "crowd" / "world.urdf",
+                         "<?xml version=\"1.0\"?><robot name=\"crowd\"><link name=\"l\">" + boxes + "</link></robot>");
+  try {
+    checkStartAndGoal(loadProblem(cfg));
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("tiny.cfg: the start state (position 2, 5, 5) is in collision: " + robot + " overlaps ", 0),
+              0u)
+        << what;
+    EXPECT_NE(what.find("; and 2 more pairs (exact check; touching counts as collision)"), std::string::npos) << what;
+    std::size_t named = 0;
+    for (std::size_t at = what.find("world piece"); at != std::string::npos; at = what.find("world piece", at + 1)) {
+      ++named;
+    }
+    EXPECT_EQ(named, kMaxCollisionsNamed);
+  }
 }
 
 }  // namespace

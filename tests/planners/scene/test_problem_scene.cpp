@@ -123,6 +123,36 @@ volume.max.y = 10
   EXPECT_EQ(s.robot.name(), "arm");
 }
 
+// The loaders' warnings reach the scene, from a mesh robot and from a mesh
+// inside a URDF world, each naming its file (and the URDF element).
+TEST(ProblemScene, LoadWarningsAreCollected) {
+  TempDir dir;
+  // Two boxes side by side (not convex) plus a triangle with a repeated corner.
+  std::vector<Eigen::Vector3d> tri = boxTriangles({0, 0, 0}, {1, 1, 1});
+  for (const auto& p : boxTriangles({2, 0, 0}, {3, 1, 1})) tri.push_back(p);
+  tri.insert(tri.end(), {{0, 0, 0}, {0, 0, 0}, {1, 1, 1}});
+  dir.write("assets/two.stl", asciiStl(tri));
+  dir.write("assets/world.urdf", R"(<robot name="w"><link name="l">
+    <collision><geometry><mesh filename="two.stl"/></geometry></collision></link></robot>)");
+  const auto cfg = dir.write("warn.cfg", R"([problem]
+robot = assets/two.stl
+world = assets/world.urdf
+start.x = 10
+start.y = 0
+start.theta = 0
+goal.x = 20
+goal.y = 0
+goal.theta = 0
+)");
+  const ProblemScene s = loadProblemScene(readProblemConfig(cfg));
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_NE(s.warnings[0].find("two.stl: skipped 1 of 25 triangles"), std::string::npos) << s.warnings[0];
+  EXPECT_EQ(s.warnings[1].rfind("world.urdf: link 'l', collision 0: ", 0), 0u) << s.warnings[1];
+  EXPECT_NE(s.warnings[1].find("two.stl: skipped 1 of 25 triangles"), std::string::npos) << s.warnings[1];
+  EXPECT_EQ(s.robot.pieces().size(), 24u);
+  EXPECT_EQ(s.world.pieces().size(), 24u);
+}
+
 TEST(ProblemSceneErrors, TranslationOnlyConfigBuiltInCodeWithARotatedGoal) {
   TempDir dir;
   writeAssets(dir);

@@ -157,6 +157,24 @@ TEST(Urdf, EmptyWorldIsAllowedButARobotNeedsGeometry) {
   expectSceneError([&] { loadBody(file); }, {"empty.urdf", "no collision geometry"});
 }
 
+// Issue 11: a URDF with 50,000 nested elements crashed urdfdom's XML parser
+// (stack overflow); the nesting is now refused before parsing.
+TEST(UrdfErrors, PathologicalNestingIsRefusedBeforeParsing) {
+  TempDir dir;
+  std::string text = "<robot name=\"deep\">\n<link name=\"a\">\n";
+  for (int i = 0; i < 50000; ++i) text += "<visual>";
+  for (int i = 0; i < 50000; ++i) text += "</visual>";
+  text += "\n</link>\n</robot>\n";
+  const auto file = dir.write("deep.urdf", text);
+  expectSceneError([&] { loadBody(file); }, {"deep.urdf:3: XML elements nested more than 256 deep"});
+  expectSceneError([&] { loadWorld(file); }, {"deep.urdf:3:"});
+  // Nesting inside a comment is not nesting.
+  std::string commented = "<robot name=\"c\"><!--";
+  for (int i = 0; i < 50000; ++i) commented += "<a>";
+  commented += "--><link name=\"l\"><collision><geometry><box size=\"1 1 1\"/></geometry></collision></link></robot>";
+  EXPECT_EQ(loadBody(dir.write("commented.urdf", commented)).pieces().size(), 1u);
+}
+
 TEST(UrdfErrors, MissingFile) {
   TempDir dir;
   expectSceneError([&] { loadBody(dir.path() / "absent.urdf"); }, {"absent.urdf", "file not found"});

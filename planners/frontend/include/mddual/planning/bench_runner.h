@@ -44,6 +44,7 @@
 // statistically equivalent samples).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -63,6 +64,12 @@ inline constexpr double kMaxTimeLimit = 1e7;
 /// Largest memory limit accepted, MB (1 PB): OMPL converts it to bytes in a
 /// 64-bit integer, which overflows for limits near 1.8e13 MB.
 inline constexpr double kMaxMemLimit = 1e9;
+
+/// Longest problem name runBench accepts, bytes. The name starts the file
+/// names of the logs ("<name>-fcl-continuous.shard<I>of<N>.log") and of the
+/// saved paths ("<name>-<checker>-<planner>-run<r>....path"), which file
+/// systems limit to 255 bytes.
+inline constexpr std::size_t kMaxProblemNameBytes = 128;
 
 /// Slice I of N of the runs.
 struct BenchShard {
@@ -132,15 +139,22 @@ struct BenchLog {
 /// "<config>-<checker>.log", or "<config>-<checker>.shard<I>of<N>.log" for a shard.
 std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard);
 
-/// The cfg's planners that `names` selects (all when empty), in cfg order;
-/// throws InvalidInputError for a name the cfg does not have.
+/// The planners `names` selects (all the cfg's when empty): see
+/// selectPlannerSpecs (a name the cfg does not list runs with OMPL's
+/// defaults); throws InvalidInputError for a name no planner has.
 std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names);
+
+/// Checks what runBench needs of a problem before anything runs: a name of
+/// at most kMaxProblemNameBytes, and start and goal states within the bounds
+/// and free (checkStartAndGoal). Throws InvalidInputError naming the cfg.
+void checkBenchProblem(const Problem& problem);
 
 /// Runs the benchmark (see the file comment). Throws InvalidInputError for
 /// bad options (no checker, runs < 1, time or memory limit <= 0 or above
 /// kMaxTimeLimit / kMaxMemLimit, more shards than
-/// runs, a cfg with run_count = 0 and no runs option) or a log that cannot be
-/// written, and what ProblemSetup / makePlanner throw.
+/// runs, a cfg with run_count = 0 and no runs option) or a problem that
+/// checkBenchProblem refuses, all before anything runs, or a log that cannot
+/// be written, and what ProblemSetup / makePlanner throw.
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options,
                                const BenchObserver& observer = BenchObserver());
 

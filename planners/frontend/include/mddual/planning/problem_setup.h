@@ -50,6 +50,7 @@
 #include <ompl/base/Planner.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/geometric/SimpleSetup.h>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -100,6 +101,26 @@ struct Problem {
 Problem loadProblem(const std::filesystem::path& cfg);
 /// A Problem from a config and scene made in code.
 Problem makeProblem(scene::ProblemConfig config, scene::ProblemScene scene);
+
+/// Longest user string (a name, a flag's value) quoted in a message, bytes;
+/// longer ones are cut by clipForMessage.
+inline constexpr std::size_t kMaxQuotedChars = 200;
+/// `text`, or its first kMaxQuotedChars bytes + "... (N bytes)".
+std::string clipForMessage(const std::string& text);
+
+/// Colliding (robot piece, world piece) pairs named by checkStartAndGoal; the
+/// rest are counted.
+inline constexpr std::size_t kMaxCollisionsNamed = 3;
+
+/// Checks that the start and the goal state of `problem` can be planned from
+/// and to: each position within the position bounds (x and y for the planar
+/// kinds) and the robot there free of the world by the exact check of the
+/// core (intersect(); touching counts as collision, as in the mdd checker).
+/// OMPL's planners only report such a problem as unsolved. Throws
+/// InvalidInputError "<cfg>: the start state ...", naming the state, the
+/// bound it violates (axis, value, range), or the colliding robot and world
+/// pieces (their origins, e.g. "robot.urdf: link 'base', collision 0 (box)").
+void checkStartAndGoal(const Problem& problem);
 
 /// The planning space kind of a cfg's space kind.
 SpaceKind toPlanningKind(scene::SpaceKind kind);

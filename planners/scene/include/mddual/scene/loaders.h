@@ -45,10 +45,21 @@ struct LoadOptions {
 
 /// What meshPieces found in a mesh file.
 struct MeshInfo {
-  int vertices = 0;              ///< vertices of the meshes referenced by the node tree
-  int triangles = 0;             ///< triangles read
-  int degenerate_triangles = 0;  ///< zero-area (or collinear) triangles skipped
-  bool convex = false;           ///< the mesh equals its convex hull (one kConvex piece)
+  int vertices = 0;   ///< vertices of the meshes referenced by the node tree
+  int triangles = 0;  ///< triangles read
+  /// Triangles that are not pieces: zero area, repeated or collinear corners,
+  /// or (loaded as triangles) slivers the hull code cannot make a polytope of.
+  int degenerate_triangles = 0;
+  bool convex = false;  ///< the mesh equals its convex hull (one kConvex piece)
+  /// The hull that decides convexity could not be built (a qhull precision
+  /// error): the mesh was loaded as triangles, and `warnings` says so.
+  bool hull_failed = false;
+  /// Loaded as triangles: the file indices of the triangles skipped (sorted).
+  std::vector<int> skipped_triangles;
+  /// What the user should know about the load, each naming the file: the
+  /// skipped triangles (with the largest distance by which they could change
+  /// the geometry), a convexity check that fell back to triangles.
+  std::vector<std::string> warnings;
   /// Mean of the vertices, scaled, in the mesh file's frame (before the shift
   /// of recentring and before X_OM).
   Eigen::Vector3d mean_vertex = Eigen::Vector3d::Zero();
@@ -60,31 +71,53 @@ struct MeshInfo {
 /// joints taken as fixed at their origins) or a mesh file (any format assimp
 /// reads: .stl .obj .dae .ply ...). Pieces are in the body frame R (the URDF's
 /// root link frame, or the mesh file's frame shifted by -mean vertex when
-/// options.recentre_mesh). Throws SceneError naming the file and the element
-/// when the file is unreadable, malformed, unsupported or has no collision
-/// geometry.
-RigidBody loadBody(const std::filesystem::path& file, const LoadOptions& options = {});
+/// options.recentre_mesh). `warnings` (if not null) receives the meshes' load
+/// warnings (MeshInfo::warnings). Throws SceneError naming the file and the
+/// element when the file is unreadable, malformed (an XML file nested deeper
+/// than 256 elements included), unsupported or has no collision geometry.
+RigidBody loadBody(const std::filesystem::path& file, const LoadOptions& options = {},
+                   std::vector<std::string>* warnings = nullptr);
 
 /// Loads a static world (URDF or mesh file, as loadBody but never recentred);
 /// pieces in the world frame W. A URDF world without collision geometry is an
 /// empty (free) world; a mesh file must contain triangles.
-World loadWorld(const std::filesystem::path& file, const LoadOptions& options = {});
+World loadWorld(const std::filesystem::path& file, const LoadOptions& options = {},
+                std::vector<std::string>* warnings = nullptr);
 
 /// The pieces of a mesh file in the owner frame O: every vertex v of the file
 /// (node transforms applied) becomes X_OM * (scale .* v - shift), where shift
 /// is the mean of the scaled vertices when options.recentre_mesh, else zero.
+///
 /// A mesh equal to its convex hull (every triangle lies in a supporting plane
 /// of the hull, within 1e-6 of the mesh's bounding-box diagonal plus 5e-7 of
 /// its largest coordinate, since assimp stores floats; and the triangles'
 /// total area is the hull's surface area within a relative 1e-5) is one
-/// kConvex piece; any other mesh is one kTriangle piece per non-degenerate
-/// triangle (a triangle whose height is below 1e-10 of its longest edge is
-/// degenerate, skipped and counted), or its hull (kConvex) when
-/// options.mesh_convex_hull. Piece::origin is "<file name>: triangle i" (i
-/// counts the file's triangles from 0)
-/// or "<file name>: convex". Throws SceneError (naming the file and assimp's
-/// error) for a missing, unreadable or unsupported file, a file without
-/// triangles, or one whose triangles are all degenerate.
+/// kConvex piece; any other mesh is one kTriangle piece per triangle, or its
+/// hull (kConvex) when options.mesh_convex_hull. Piece::origin is
+/// "<file name>: triangle i" (i counts the file's triangles from 0) or
+/// "<file name>: convex".
+///
+/// Never a failed load for geometry that OMPL.app accepts:
+///   - a triangle that is not a polytope (height below 1e-10 of its longest
+///     edge: zero area, repeated or collinear corners; or a sliver, height at
+///     most 1e-6 of its longest edge, that the hull code rejects) is skipped,
+///     counted in MeshInfo::degenerate_triangles and, when the mesh is loaded
+///     as triangles, listed in a warning with its index and the largest
+///     distance a skipped triangle extends from its longest edge;
+///   - when the hull that only decides convexity cannot be built (qhull's
+///     precision errors on large, nearly coplanar meshes), the mesh is loaded
+///     as triangles (exact, only slower if it was convex) and a warning says
+///     so. A mesh with a triangle that has corners beyond both sides of its
+///     plane is not convex, which is found without a hull.
+///
+/// Throws SceneError naming the file (and the step: the assimp error, the
+/// vertex, the triangle, the hull) for a missing, unreadable or unsupported
+/// file, a COLLADA file nested deeper than 256 elements, a vertex that is NaN
+/// or overflows assimp's 32-bit floats (|x| > 3.4e38), a file without
+/// triangles or none of whose triangles is a polytope, a triangle that is no
+/// sliver but that the hull code rejects (a small triangle far from the
+/// origin: skipping it would open a hole), and a hull asked for by
+/// options.mesh_convex_hull that cannot be built.
 std::vector<Piece> meshPieces(const std::filesystem::path& file, const Eigen::Vector3d& scale,
                               const Eigen::Isometry3d& X_OM, const LoadOptions& options, MeshInfo* info = nullptr);
 

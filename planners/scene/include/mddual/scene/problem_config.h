@@ -179,6 +179,10 @@ struct ProblemScene {
   /// A mesh robot's file frame is shifted by -robot_shift to make R (OMPL.app:
   /// the mean vertex, its z zeroed for planar kinds); zero for a URDF robot.
   Eigen::Vector3d robot_shift = Eigen::Vector3d::Zero();
+  /// The loaders' warnings for the robot and the world (MeshInfo::warnings:
+  /// skipped triangles, a convexity check that fell back to triangles), each
+  /// naming its file; the caller shows them.
+  std::vector<std::string> warnings;
 };
 
 /// Loads the robot (URDF: root link frame; mesh: recentred as OMPL.app does)

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/) with Clang under ASan + UBSan and runs
+# each one for a fixed number of executions from the seed corpus:
+#   fuzz_polytope  seeds in fuzz/seeds/polytope
+#   fuzz_cfg       configs/**/*.cfg
+#   fuzz_urdf      configs/**/*.urdf
+#   fuzz_mesh      configs/**/meshes/* (first byte: the format)
+#   fuzz_jsonl     fuzz/seeds/jsonl (first byte: pd's method)
+# plus every past finding in fuzz/findings (named <target>-<what>).
+# MDDUAL_FUZZ_RUNS sets the executions per target (default 10000: 20 s to
+# 90 s each on a 2-core machine); -seed=1 makes a run repeatable. A crash,
+# a sanitizer report or a wrong answer stops the script with the input saved
+# as build/fuzz/crash-* (turn it into a regression test).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+runs="${MDDUAL_FUZZ_RUNS:-10000}"
+jobs="${MDDUAL_JOBS:-$(nproc)}"
+CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_BUILD_FUZZERS=ON \
+  -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF >/dev/null
+cmake --build build/fuzz -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl
+
+corpus=build/fuzz/corpus
+rm -rf "$corpus"
+mkdir -p "$corpus"/{polytope,cfg,urdf,mesh,jsonl}
+cp fuzz/seeds/polytope/* "$corpus/polytope/"
+cp fuzz/seeds/jsonl/* "$corpus/jsonl/"
+# Past findings replay first in every run (fuzz/findings/<target>-*).
+for f in fuzz/findings/*; do
+  [ -e "$f" ] || continue
+  name=$(basename "$f")
+  cp "$f" "$corpus/${name%%-*}/"
+done
+find configs -name '*.cfg' -exec cp {} "$corpus/cfg/" \;
+find configs -name '*.urdf' -exec cp {} "$corpus/urdf/" \;
+i=0
+while IFS= read -r -d '' mesh; do
+  # The mesh target reads the format from the first byte (0 obj, 1 stl, 2 dae, 3 ply).
+  case "$mesh" in
+    *.obj) b='\x00' ;; *.stl) b='\x01' ;; *.dae) b='\x02' ;; *.ply) b='\x03' ;; *) continue ;;
+  esac
+  { printf "$b"; head -c 65536 "$mesh"; } >"$corpus/mesh/seed$i"
+  i=$((i + 1))
+done < <(find configs -path '*meshes*' -type f -print0)
+
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
+for target in polytope cfg urdf mesh jsonl; do
+  echo "== fuzz_$target: $runs executions"
+  start=$(date +%s)
+  (cd build/fuzz && ./fuzz/fuzz_$target -seed=1 -runs="$runs" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
+    "corpus/$target" 2>"fuzz_$target.log") || {
+    tail -40 "build/fuzz/fuzz_$target.log"
+    echo "fuzz_$target found a problem (log: build/fuzz/fuzz_$target.log)"
+    exit 1
+  }
+  grep -E "^Done [0-9]+ runs" "build/fuzz/fuzz_$target.log" || true
+  echo "fuzz_$target: $runs executions in $(($(date +%s) - start)) s, no finding"
+done

@@ -236,6 +236,86 @@ ExampleScene blobScene(std::uint64_t seed, int obstacles) {
               Eigen::AlignedBox3d(Eigen::Vector3d(-15, -15, -15), Eigen::Vector3d(15, 15, 15)), SpaceKind::kSE3);
 }
 
+ExampleScene trapScene(int grid) {
+  if (grid < 6 || grid % 2 != 0) throw InvalidInputError("trapScene: the grid must be even and at least 6");
+  std::vector<scene::Piece> world;
+  const double outer = 5.0, inner = 4.6;
+  // The opening: the central hole_cells x hole_cells squares of both surfaces
+  // of the +x wall.
+  const int hole_cells = std::max(2, grid / 4) / 2 * 2;
+  const int h0 = (grid - hole_cells) / 2, h1 = h0 + hole_cells;
+  const auto hole = [&](double half) { return -half + 2.0 * half * h0 / grid; };
+  // Both surfaces of every wall: the six faces of the cubes of half side
+  // `outer` and `inner`.
+  for (const double half : {outer, inner}) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      for (const double side : {-1.0, 1.0}) {
+        Eigen::Vector3d corner = Eigen::Vector3d::Constant(-half);
+        corner[axis] = side * half;
+        const bool opening = axis == 0 && side > 0.0;
+        // The outside of the closed walls: large triangles (2 x 2 squares).
+        const int n = opening || half == inner ? grid : 2;
+        const Eigen::Vector3d u = 2.0 * half / n * Eigen::Vector3d::Unit(a);
+        const Eigen::Vector3d v = 2.0 * half / n * Eigen::Vector3d::Unit(b);
+        for (int i = 0; i < n; ++i) {
+          for (int j = 0; j < n; ++j) {
+            if (opening && i >= h0 && i < h1 && j >= h0 && j < h1) continue;
+            addRectangle(corner + i * u + j * v, u, v, "trap wall", &world);
+          }
+        }
+      }
+    }
+  }
+  // The opening's four sides between the surfaces, then a tube inward.
+  const double ho = -hole(outer), hi = -hole(inner), tube_end = 2.0;
+  const int tube_cells = 4;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector2d c[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    const Eigen::Vector2d p = c[k], q = c[(k + 1) % 4];
+    const Eigen::Vector3d po(outer, ho * p.x(), ho * p.y()), qo(outer, ho * q.x(), ho * q.y());
+    const Eigen::Vector3d pi(inner, hi * p.x(), hi * p.y()), qi(inner, hi * q.x(), hi * q.y());
+    world.push_back(trianglePiece(po, qo, qi, "trap opening"));
+    world.push_back(trianglePiece(po, qi, pi, "trap opening"));
+    const Eigen::Vector3d u = (qi - pi) / tube_cells;
+    const Eigen::Vector3d v = Eigen::Vector3d(tube_end - inner, 0, 0) / tube_cells;
+    for (int i = 0; i < tube_cells; ++i) {
+      for (int j = 0; j < tube_cells; ++j) addRectangle(pi + i * u + j * v, u, v, "trap tube", &world);
+    }
+  }
+  // Tilted, so that no wall is parallel to the frame's planes (as in a
+  // general mesh: the walls' triangles have thick axis-aligned boxes).
+  Eigen::Isometry3d tilt = Eigen::Isometry3d::Identity();
+  tilt.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (scene::Piece& p : world) {
+    p = scene::Piece::make(ConvexPolytope::fromPoints(transformed(p.polytope.vertices(), tilt)), p.kind, p.origin);
+  }
+  // The capsule: rings along x (pole, two cap rings, five body rings, two cap
+  // rings, pole) of 14 vertices each.
+  const double r = 0.35, body = 1.2;
+  const int m = 14;
+  std::vector<std::pair<double, double>> rings;  // (x, radius)
+  for (const double phi : {kPi / 6, kPi / 3}) rings.emplace_back(-body - r * std::cos(phi), r * std::sin(phi));
+  for (int k = 0; k <= 4; ++k) rings.emplace_back(-body + 0.5 * body * k, r);
+  for (const double phi : {kPi / 3, kPi / 6}) rings.emplace_back(body + r * std::cos(phi), r * std::sin(phi));
+  const auto at = [&](std::size_t ring, int k) {
+    const double t = 2.0 * kPi * k / m;
+    return Eigen::Vector3d(rings[ring].first, rings[ring].second * std::cos(t), rings[ring].second * std::sin(t));
+  };
+  std::vector<scene::Piece> robot;
+  const Eigen::Vector3d pole0(-body - r, 0, 0), pole1(body + r, 0, 0);
+  for (int k = 0; k < m; ++k) {
+    robot.push_back(trianglePiece(pole0, at(0, (k + 1) % m), at(0, k), "capsule cap"));
+    robot.push_back(trianglePiece(pole1, at(rings.size() - 1, k), at(rings.size() - 1, (k + 1) % m), "capsule cap"));
+    for (std::size_t ring = 0; ring + 1 < rings.size(); ++ring) {
+      robot.push_back(trianglePiece(at(ring, k), at(ring, (k + 1) % m), at(ring + 1, (k + 1) % m), "capsule"));
+      robot.push_back(trianglePiece(at(ring, k), at(ring + 1, (k + 1) % m), at(ring + 1, k), "capsule"));
+    }
+  }
+  return make("trap", std::move(robot), std::move(world),
+              Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-7.0), Eigen::Vector3d::Constant(7.0)), SpaceKind::kSE3);
+}
+
 ExampleScene thinWallScene(double thickness) {
   if (!(thickness > 0.0)) throw InvalidInputError("thinWallScene: the thickness must be positive");
   std::vector<scene::Piece> world;

@@ -13,10 +13,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Warm-start tables are cleared past this many pairs (per thread and scene):
 /// bounds the memory of long runs over large worlds.
 constexpr std::size_t kMaxWarmPairs = std::size_t{1} << 17;
-/// Relative slack of the bounding-sphere culls (round-off of the transforms).
-constexpr double kSphereSlack = 1e-9;
 /// Sub-edge count safety factor (see the header: OMPL's slerp round-off).
 constexpr double kSubEdgeSafety = 1e-6;
+/// An enlarged piece (enlargePieces at delta) lies within this many delta of
+/// the piece: the cube's circumradius sqrt(3) (the icosahedron's is 1.26),
+/// with room for the 1e-9 scale margin and round-off. The robot's node
+/// volumes grown by it hold the enlarged pieces.
+constexpr double kEnlargedReach = 1.7320508075688772 * (1.0 + 1e-6);
 /// Smallest delta relative to the robot radius.
 constexpr double kMinRotationToleranceRel = 1e-6;
 constexpr int kMaxRefinementLevels = 8;
@@ -40,58 +43,6 @@ const std::vector<Eigen::Vector3d>& icosahedron() {
 double icosahedronInradius() {
   const double phi = 0.5 * (1.0 + std::sqrt(5.0));
   return phi * phi / std::sqrt(3.0);
-}
-
-/// Whether the spheres (c1, r1) and (c2, r2) are certainly apart.
-bool spheresApart(const Eigen::Vector3d& c1, double r1, const Eigen::Vector3d& c2, double r2) {
-  const double r = (r1 + r2) * (1.0 + kSphereSlack);
-  return (c1 - c2).squaredNorm() > r * r;
-}
-
-/// Whether the sphere (c, r) certainly misses the capsule swept by the sphere
-/// (c0, r0) moving from c0 along unit u by [0, length] (length may be +inf).
-bool sweptSphereApart(const Eigen::Vector3d& c0, double r0, const Eigen::Vector3d& u, double length,
-                      const Eigen::Vector3d& c, double r) {
-  const double s = std::clamp((c - c0).dot(u), 0.0, length);
-  return spheresApart(c0 + s * u, r0, c, r);
-}
-
-/// Whether the box `moving` translated by s u, s in [0, length] (length may
-/// be +inf), certainly misses the box `fixed`: the segment {s u} against the
-/// box fixed - moving (a slab test).
-bool sweptBoxApart(const Eigen::AlignedBox3d& moving, const Eigen::Vector3d& u, double length,
-                   const Eigen::AlignedBox3d& fixed) {
-  double lo = 0.0, hi = length;
-  for (int k = 0; k < 3; ++k) {
-    // Slack for the round-off of the boxes (relative to their coordinates).
-    const double slack = kSphereSlack * (1.0 + std::abs(fixed.max()[k]) + std::abs(moving.max()[k]));
-    const double a = fixed.min()[k] - moving.max()[k] - slack;  // s u_k must lie in [a, b]
-    const double b = fixed.max()[k] - moving.min()[k] + slack;
-    if (u[k] == 0.0) {
-      if (a > 0.0 || b < 0.0) return true;
-      continue;
-    }
-    double s0 = a / u[k], s1 = b / u[k];
-    if (s0 > s1) std::swap(s0, s1);
-    lo = std::max(lo, s0);
-    hi = std::min(hi, s1);
-    if (lo > hi) return true;
-  }
-  return false;
-}
-
-/// Appends lo..hi in bisection order: middle first, then the middles of the
-/// halves, breadth first.
-void bisectionOrder(int lo, int hi, std::vector<int>* out) {
-  std::vector<std::pair<int, int>> queue{{lo, hi}};
-  for (std::size_t q = 0; q < queue.size(); ++q) {
-    const auto [a, b] = queue[q];
-    if (a > b) continue;
-    const int mid = a + (b - a) / 2;
-    out->push_back(mid);
-    queue.emplace_back(a, mid - 1);
-    queue.emplace_back(mid + 1, b);
-  }
 }
 
 std::uint64_t pairKey(int set, int robot_piece, int world_piece) {
@@ -155,6 +106,20 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
   for (int level = 0; level <= options.refinement_levels; ++level) {
     enlarged_.push_back(enlargePieces(robot_->pieces(), delta_ / std::ldexp(1.0, level)));
   }
+  const auto tree = [](const std::vector<scene::Piece>& pieces) {
+    std::vector<const ConvexPolytope*> polytopes;
+    polytopes.reserve(pieces.size());
+    for (const scene::Piece& p : pieces) polytopes.push_back(&p.polytope);
+    // No node hulls: on the trap scene (benchmarks) their lower bounds did
+    // not pay for their core queries in translation sweeps.
+    return Bvh::fromPolytopes(polytopes);
+  };
+  robot_tree_ = tree(robot_->pieces());
+  world_tree_ = tree(world_->pieces());
+}
+
+double MddScene::setMargin(int set) const {
+  return set == 0 ? 0.0 : kEnlargedReach * delta_ / std::ldexp(1.0, set - 1);
 }
 
 int MddScene::subEdgeCount(double angle) const {
@@ -189,33 +154,23 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
   const std::vector<scene::Piece>& pieces = pieceSet(set);
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
-  thread_local std::vector<int> candidates;              // this function only: no reentrancy
   int queries = 0;
   bool hit = false;
-  for (int i = 0; i < static_cast<int>(pieces.size()) && !hit; ++i) {
-    const scene::Piece& piece = pieces[static_cast<std::size_t>(i)];
-    candidates.clear();
-    world_->candidates(scene::transformedBox(piece.box, X_WR), &candidates);
-    const Eigen::Vector3d c_W = X_WR * piece.centre;
-    for (int j : candidates) {
-      const scene::Piece& obstacle = world[static_cast<std::size_t>(j)];
-      if (spheresApart(c_W, piece.radius, obstacle.centre, obstacle.radius)) continue;
-      IntersectInput in;
-      in.a = &obstacle.polytope;
-      in.b = &piece.polytope;
-      in.X_WB = X_WR;
-      ++queries;
-      if (intersect(in, warmIn(*table, set, i, j)).intersecting) {
-        if (which) {
-          *which = PieceContact();
-          which->robot_piece = i;
-          which->world_piece = j;
-        }
-        hit = true;
-        break;
-      }
+  forEachOverlappingPair(world_tree_, robot_tree_, X_WR, setMargin(set), [&](int j, int i) {
+    IntersectInput in;
+    in.a = &world[static_cast<std::size_t>(j)].polytope;
+    in.b = &pieces[static_cast<std::size_t>(i)].polytope;
+    in.X_WB = X_WR;
+    ++queries;
+    if (!intersect(in, warmIn(*table, set, i, j)).intersecting) return true;
+    if (which) {
+      *which = PieceContact();
+      which->robot_piece = i;
+      which->world_piece = j;
     }
-  }
+    hit = true;
+    return false;
+  });
   if (pair_queries) *pair_queries += queries;
   return hit;
 }
@@ -260,43 +215,36 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   const std::vector<scene::Piece>& pieces = pieceSet(set);
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();
-  double limit = max_distance;
-  thread_local std::vector<int> candidates;  // this function only: no reentrancy
-  for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
-    const scene::Piece& piece = pieces[static_cast<std::size_t>(i)];
-    candidates.clear();
-    sweptCandidates(set, i, X_WR, u, max_distance, &candidates);
-    const Eigen::Vector3d c_W = X_WR * piece.centre;
-    const Eigen::AlignedBox3d box_W = scene::transformedBox(piece.box, X_WR);
-    for (int j : candidates) {
-      const scene::Piece& obstacle = world[static_cast<std::size_t>(j)];
-      if (sweptSphereApart(c_W, piece.radius, u, limit, obstacle.centre, obstacle.radius)) continue;
-      if (sweptBoxApart(box_W, u, limit, obstacle.box)) continue;
-      DirectionalInput in;
-      in.a = &obstacle.polytope;
-      in.b = &piece.polytope;
-      in.X_WB = X_WR;
-      in.s_W = u;
-      in.max_distance = limit;
-      in.exact_toi = first_contact;  // a yes/no sweep may stop at the first proof of a hit
-      ++result.pair_queries;
-      const ToiResult r = toi(in, warmIn(*table, set, i, j));
-      if (r.status == ToiStatus::kNever || !(r.toi <= limit)) continue;
-      result.contact = PieceContact();
-      result.contact.robot_piece = i;
-      result.contact.world_piece = j;
-      if (r.status == ToiStatus::kInContact) {
-        result.start_collides = true;
-        result.distance = 0.0;
-        return result;  // nothing comes before t = 0
-      }
-      result.distance = r.toi;
-      result.contact.p_WC = r.contact.point_W;
-      result.contact.n_W = r.contact.normal_W;
-      if (!first_contact) return result;
-      limit = r.toi;
+  CastOptions options;
+  options.margin_b = setMargin(set);
+  options.first_contact = first_contact;
+  // The cast keeps the smallest distance the leaf returns; the contact of
+  // that pair is recorded here (same rule: strictly smaller than the best).
+  const auto leaf = [&](int j, int i, double limit) {
+    DirectionalInput in;
+    in.a = &world[static_cast<std::size_t>(j)].polytope;
+    in.b = &pieces[static_cast<std::size_t>(i)].polytope;
+    in.X_WB = X_WR;
+    in.s_W = u;
+    in.max_distance = limit;
+    in.exact_toi = first_contact;  // a yes/no sweep may stop at the first proof of a hit
+    ++result.pair_queries;
+    const ToiResult r = toi(in, warmIn(*table, set, i, j));
+    if (r.status == ToiStatus::kNever || !(r.toi <= limit) || !(r.toi < result.distance)) return kInf;
+    result.contact = PieceContact();
+    result.contact.robot_piece = i;
+    result.contact.world_piece = j;
+    result.distance = r.toi;
+    if (r.status == ToiStatus::kInContact) {
+      result.start_collides = true;
+      result.distance = 0.0;
+      return 0.0;  // nothing comes before s = 0: the cast stops
     }
-  }
+    result.contact.p_WC = r.contact.point_W;
+    result.contact.n_W = r.contact.normal_W;
+    return r.toi;
+  };
+  castFirst(world_tree_, robot_tree_, X_WR, u, max_distance, leaf, options);
   return result;
 }
 
@@ -324,69 +272,11 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, bool first_contact) co
     return out;
   }
   out.exact = false;
-  const int n = subEdgeCount(motion.angle);
-  // First contact: in order from the start. Validity only: in bisection order
-  // (middle first, as OMPL's discrete validator), which meets a colliding
-  // stretch sooner; a valid edge costs the same either way.
-  thread_local std::vector<int> order;  // this function only: no reentrancy
-  order.clear();
-  if (first_contact) {
-    for (int k = 0; k < n; ++k) order.push_back(k);
-  } else {
-    bisectionOrder(0, n - 1, &order);
-  }
-  for (int k : order) {
-    const double ta = static_cast<double>(k) / n;
-    const double tb = k + 1 == n ? 1.0 : static_cast<double>(k + 1) / n;
-    const SubEdge sub = checkSubEdge(motion, ta, tb, 0, first_contact, &out);
-    if (sub.free) continue;
-    out.collides = true;
-    out.fraction = sub.fraction;
-    out.contact = sub.contact;
-    if (sub.fraction == 0.0) out.start_collides = collidesSet(0, motion.pose(0.0), &out.pair_queries, nullptr);
-    return out;
+  checkRotating(motion, first_contact, &out);
+  if (out.collides && out.fraction == 0.0) {
+    out.start_collides = collidesSet(0, motion.pose(0.0), &out.pair_queries, nullptr);
   }
   return out;
-}
-
-MddScene::SubEdge MddScene::checkSubEdge(const EdgeMotion& motion, double ta, double tb, int level, bool first_contact,
-                                         EdgeContact* stats) const {
-  const int set = level + 1;
-  const bool finest = level == refinementLevels();
-  const double tm = 0.5 * (ta + tb);
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.linear() = motion.orientation(tm).toRotationMatrix();
-  X.translation() = motion.position(ta);
-  const Eigen::Vector3d v = motion.position(tb) - X.translation();
-  const double length = v.norm();
-  ++stats->sub_edges;
-  SubEdge fail;
-  fail.free = false;
-  if (length == 0.0) {
-    if (!collidesSet(set, X, &stats->pair_queries, &fail.contact)) return SubEdge();
-    fail.fraction = ta;
-  } else {
-    // Coarse levels only decide whether to refine: any contact will do.
-    const SweepResult s = sweepSet(set, X, v, length, first_contact && finest);
-    stats->pair_queries += s.pair_queries;
-    if (!s.start_collides && !(s.distance <= length)) return SubEdge();
-    fail.fraction = s.start_collides ? ta : ta + (tb - ta) * std::min(1.0, s.distance / length);
-    fail.contact = s.contact;
-  }
-  if (finest) return fail;
-  if (!first_contact) {
-    // Validity only: a true state of this sub-edge that collides settles it
-    // without refining (the enlarged robot usually fails for a real contact).
-    for (double t : {tm, tb}) {
-      if (collidesSet(0, motion.pose(t), &stats->pair_queries, &fail.contact)) {
-        fail.fraction = ta;  // not a first contact: only `collides` is meaningful in this mode
-        return fail;
-      }
-    }
-  }
-  const SubEdge first = checkSubEdge(motion, ta, tm, level + 1, first_contact, stats);
-  if (!first.free) return first;
-  return checkSubEdge(motion, tm, tb, level + 1, first_contact, stats);
 }
 
 }  // namespace mddual::planning

@@ -87,7 +87,7 @@ TEST_P(StateAgreement, MddAndFclAgreeOnRandomStates) {
 std::string sceneName(const ::testing::TestParamInfo<int>& p) {
   return testing::sceneName(p.param);
 }
-INSTANTIATE_TEST_SUITE_P(Scenes, StateAgreement, ::testing::Range(0, 8), sceneName);
+INSTANTIATE_TEST_SUITE_P(Scenes, StateAgreement, ::testing::Range(0, testing::kSceneCount), sceneName);
 
 TEST(StateValidity, TouchingCountsAsCollision) {
   // A unit cube robot resting exactly on a slab: invalid; lifted by 1e-6: valid.

@@ -222,13 +222,15 @@ const std::vector<examples::ExampleScene>& allScenes() {
   static const std::vector<examples::ExampleScene> scenes = [] {
     std::vector<examples::ExampleScene> all = standardScenes(seed());
     for (examples::ExampleScene& f : fileScenes(seed())) all.push_back(std::move(f));
+    all.push_back(examples::trapScene());
     return all;
   }();
   return scenes;
 }
 
 std::string sceneName(int index) {
-  static const char* kNames[] = {"primitives", "mesh", "planar", "blobs", "urdf", "meshfile", "maze_se2", "cubicles"};
+  static const char* kNames[] = {"primitives", "mesh",     "planar",   "blobs", "urdf",
+                                 "meshfile",   "maze_se2", "cubicles", "trap"};
   return kNames[index];
 }
 

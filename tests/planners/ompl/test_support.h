@@ -56,11 +56,13 @@ std::vector<examples::ExampleScene> standardScenes(std::uint64_t seed);
 /// configs/maze_se2 (SE(2)) and configs/cubicles (SE(3)).
 std::vector<examples::ExampleScene> fileScenes(std::uint64_t seed);
 
-/// standardScenes(seed()) then fileScenes(seed()), built once; index k >= 4 is
-/// a file scene.
+/// standardScenes(seed()), fileScenes(seed()), then examples::trapScene()
+/// (a mesh of OMPL.app's bug-trap size), built once: kSceneCount scenes;
+/// indices 4 to 7 are the file scenes.
+inline constexpr int kSceneCount = 9;
 const std::vector<examples::ExampleScene>& allScenes();
 inline bool isFileScene(int index) {
-  return index >= 4;
+  return index >= 4 && index < 8;
 }
 /// Test name of allScenes()[index].
 std::string sceneName(int index);

@@ -45,6 +45,16 @@ ExampleScene planarScene(std::uint64_t seed, int obstacles = 60);
 /// hexagonal prism. Natural space: SE(3).
 ExampleScene blobScene(std::uint64_t seed, int obstacles = 80);
 
+/// (e) SE(3), a mesh of the size of OMPL.app's bug trap: a hollow cube (outer
+/// half side 5, walls 0.4 thick; the inside of every wall and both sides of
+/// the +x wall a grid of `grid` x `grid` squares, the outside of the others
+/// 2 x 2 large squares; two triangles per square) with a square opening in its
+/// +x wall that leads into an inward tube, tilted so that no wall is parallel
+/// to a plane of the frame; robot: a capsule (radius 0.35, length 3.1, along
+/// x) as 252 triangles. About 4,600 world triangles at the default grid.
+/// Natural space: SE(3).
+ExampleScene trapScene(int grid = 18);
+
 /// A wall of the given thickness across a long corridor (x in [0, 100], the
 /// wall at x in [50, 50 + thickness]); robot: a cube of side 0.2. Natural
 /// space: R^2 (z = 0). OMPL's default resolution here is about 1.0.

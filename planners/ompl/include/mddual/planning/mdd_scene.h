@@ -6,44 +6,79 @@
 // What it guarantees (touching counts as collision everywhere, like FCL):
 //
 //  - collides(X_WR): exact up to the core's touching tolerance (1e-10 of the
-//    pair's size): every robot piece against the world pieces whose bounding
-//    boxes meet its box at X_WR, with mddual::intersect (early escape).
+//    pair's size): the robot's hierarchy posed at X_WR against the world's
+//    (mddual::Bvh, tree against tree: sphere, axis-aligned and oriented box
+//    tests; each volume holds its node's pieces), and every pair of pieces
+//    that reaches the leaves with mddual::intersect (early escape), stopping
+//    at the first intersecting pair.
 //
 //  - sweep(X_WR, v_W): the robot translating from X_WR by s v_W, s in [0, 1]
-//    (orientation fixed). Exact: one mddual::toi per candidate pair (candidates:
-//    world pieces whose boxes meet the union of the piece's boxes at both
-//    ends, which holds the piece's whole sweep), max_distance = |v_W| (shrunk to
-//    the best contact so far when the first contact is wanted).
+//    (orientation fixed). Exact: a branch and bound over pairs of nodes
+//    (mddual::castFirst), nearest first by the first distance at which their
+//    swept volumes may meet (a lower bound for every pair of pieces below),
+//    with one mddual::toi per pair of pieces it reaches, max_distance shrunk
+//    to the best contact so far; node pairs whose bound is not below it are
+//    pruned.
+//    The first contact is the smallest toi over all pairs, as with a loop over
+//    every pair.
 //
 //  - checkEdge(motion): an edge under OMPL's interpolation (EdgeMotion).
 //    Translation edges: sweep() at the start orientation, exact; the first
 //    contact fraction is exact. Rotating edges: SOUND, never "free" when the
-//    motion collides, by this scheme:
-//      Split [0, 1] into n equal sub-edges with angle / n * r <= 2 delta
-//      (r = RigidBody::radius(), the largest distance of a robot point from
-//      the body origin; the rotation is about that origin at constant angular
-//      speed, so the angle is linear in t). On a sub-edge [ta, tb] with middle
-//      tm, R(t) = R(tm) Rot(axis, a) with |a| <= (tb - ta) angle / 2, so every
-//      body point x satisfies |R(t) x - R(tm) x| <= |a| |x| <= delta. Hence the
-//      robot at time t lies inside the robot at orientation R(tm) enlarged by
-//      the ball of radius delta, placed at p(t); p(t) runs along the segment
-//      p(ta) -> p(tb). We replace the ball by a polytope Q that contains it,
-//      an icosahedron or a cube of inradius delta (whichever gives the hull
-//      fewer vertices): the enlarged piece is the hull of {v + q_k}, the
-//      Minkowski sum of the piece and Q, which contains piece + ball. We
-//      sweep that enlarged robot from p(ta) to p(tb): if it touches nothing,
-//      neither does the true motion on [ta, tb]. If it first touches at
-//      distance d along the sub-edge's translation, the true motion is free on
-//      [ta, ta + (tb - ta) d / |p(tb) - p(ta)|): a lower bound of the first
-//      contact. A pure rotation sub-edge (no translation) uses intersect().
-//      Refinement: a sub-edge that fails is split in two and each half checked
-//      with delta / 2 (the halves rotate half as much, so the bound above holds
-//      with delta / 2), down to `refinement_levels` times; only the finest
-//      level's failure makes the edge invalid. This keeps the scheme's false
-//      alarms to clearances below delta / 2^levels while the common free
-//      sub-edges are checked at the coarse delta.
-//    A small safety factor (1e-6) in n absorbs the round-off of OMPL's
-//    quaternion slerp (states stored with norms within 1e-9 of 1).
+//    motion collides, by a branch and bound over triples (robot node N, world
+//    node M, time interval I = [ta, tb]) of the two hierarchies:
+//      Let tm be the middle of I. The rotation is about a fixed axis of the
+//      body frame through the body origin at constant angular speed, so R(t)
+//      = R(tm) Rot(axis, a) with |a| <= (tb - ta) angle / 2 for t in I, and
+//      every body point x satisfies |R(t) x - R(tm) x| = |Rot(axis, a) x - x|
+//      <= |a| dist(x, axis). For the points of N, dist(x, axis) <= rho(N),
+//      the smaller of their largest distance from the body origin and the
+//      distance of N's bounding sphere's centre from the axis plus its radius.
+//      So with e(N, I) = (tb - ta) / 2 * angle * rho(N), the part N of the
+//      robot at time t lies inside N at orientation R(tm), placed at p(t),
+//      grown by e; p(t) = p(ta) + (t - ta) / (tb - ta) v runs along the
+//      segment v = p(tb) - p(ta). The volumes used (N's oriented box, the
+//      axis-aligned box around it, and its sphere, at R(tm) placed at p(ta),
+//      grown by e; a grown box holds every point within e of the box) thus
+//      hold N at every t in I when translated by s v for s = (t - ta) / (tb -
+//      ta) in [0, 1]. A triple is cleared when one of those volumes swept by
+//      s v, s in [0, 1], misses the same volume of M (swept sphere, slab and
+//      separating-axis tests, exact for each pair of volumes): then no piece
+//      of N touches a piece of M at any time of I.
+//      Otherwise it is split into two triples that cover it: I halved, or
+//      the larger of N and M replaced by its children (which of them is a
+//      matter of speed, not soundness: mdd_scene_rotation.cpp). A pair of
+//      leaves (robot piece i, world piece j) with e <= delta is checked with
+//      the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
+//      <= refinement_levels with delta_k >= e (enlargePieces: it holds every
+//      point within delta_k of the piece, hence piece i over all of I), at
+//      orientation R(tm), swept from p(ta) along v against piece j with toi
+//      (intersect when v = 0). No contact: the pair is free on I. A contact
+//      at a level k below the finest: I is halved and both halves checked
+//      again (their e is half, so they use level k + 1 or finer). A contact
+//      at the finest level at distance d along v: the edge collides, with a
+//      first contact no earlier than ta + (tb - ta) d / |v| (ta when v = 0).
+//      Every (robot piece, world piece, time) is covered by the root triple,
+//      a split replaces a triple by triples that cover it, and a triple is
+//      dropped only when cleared or when the pair is free on it. So when the
+//      edge is declared free, no piece touches another at any time of it.
+//    e is computed with a safety factor (1 + 1e-6) and 1e-8 rho(N) added, for
+//    the round-off of OMPL's quaternion slerp (states stored with norms within
+//    1e-9 of 1). The enlargement at the leaves is at least delta /
+//    2^refinement_levels, which keeps false alarms to clearances below it.
+//    First contact (lastValid): triples wait in a queue ordered by a lower
+//    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
+//    which the swept volumes meet; at the true first contact t* of a pair in
+//    the triple its volumes meet, so the bound is <= t*), and the search stops
+//    when that bound reaches the smallest finest-level contact found, f. The
+//    triples holding the true first contact t* are each split, refuted at the
+//    finest level with fraction <= t* (the enlarged sweep holds the true
+//    motion), or left with a bound >= f and <= t*: so f <= t*, a lower bound
+//    of the first contact, never later than it. Validity only
+//    (first_contact = false): a pair refuted at a coarse level is refined
+//    at once, depth first, and the search stops at the first finest-level
+//    contact or when the true pieces of a refuted pair intersect at the
+//    refuted sweep's contact time (a state of the edge that collides).
 //
 // Thread safety: const methods may be called from any number of threads. Warm
 // starts are kept per thread, per (robot piece, world piece, enlargement
@@ -56,6 +91,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mddual/bvh.h"
 #include "mddual/planning/per_thread.h"
 #include "mddual/planning/state_space.h"
 #include "mddual/query.h"
@@ -65,23 +101,25 @@ namespace mddual::planning {
 
 /// Options of an MddScene.
 struct MddSceneOptions {
-  /// delta of the rotating-edge scheme (world units): the largest distance a
-  /// robot point moves within a sub-edge's half. <= 0 selects the default,
+  /// delta of the rotating-edge scheme (world units): the enlargement of the
+  /// robot pieces at the coarsest leaf queries (see the file comment); a pair
+  /// of pieces is checked with the core once its time interval is short
+  /// enough that no point of the robot piece moves more than delta from the
+  /// interval's middle orientation. <= 0 selects the default,
   /// kDefaultRotationToleranceRel * RigidBody::radius(). Must be at least
   /// 1e-6 * radius (more sub-edges than that would be pointless).
   double rotation_tolerance = 0.0;
-  /// Halvings of delta tried on a failing sub-edge before the edge is
-  /// declared invalid (0 to 8).
+  /// Halvings of delta tried on a pair that fails on its interval before the
+  /// edge is declared invalid (0 to 8).
   int refinement_levels = 3;
 };
 
-/// Default delta relative to the robot radius: 2%. Sub-edges every 0.04 rad
-/// (25 per radian); an enlarged piece reaches at most 1.73 delta beyond the
-/// piece (the cube's circumradius), 0.43% of the radius after the default 3
-/// refinements. Relative to the robot, not to the space's resolution: the
-/// enlargement is what costs completeness, and it should be small against the
-/// robot, whatever the size of the world. Measured on the tests' scenes
-/// (2,000 rotating edges each): 2% finds 0 to 6 free edges invalid, 5% 5 to
+/// Default delta relative to the robot radius: 2%. A piece at the robot's
+/// radius is checked over intervals of 0.04 rad at the coarsest level; an
+/// enlarged piece reaches at most 1.73 delta beyond the piece (the cube's
+/// circumradius), 0.43% of the radius after the default 3 refinements. Relative to the robot, not to the space's
+/// resolution: the enlargement is what costs completeness, and it should be small against the robot, whatever the size
+/// of the world. Measured on the tests' scenes (2,000 rotating edges each): 2% finds 0 to 6 free edges invalid, 5% 5 to
 /// 26, for about the same time (fewer sub-edges, more refinement); 1% costs
 /// 30% more time.
 inline constexpr double kDefaultRotationToleranceRel = 0.02;
@@ -120,9 +158,11 @@ struct EdgeContact {
   /// `collides` is meaningful.
   double fraction = std::numeric_limits<double>::infinity();
   bool exact = true;     ///< fraction is exact (translation edge), not a bound
-  PieceContact contact;  ///< for rotating edges: the contact of the enlarged robot
+  PieceContact contact;  ///< for rotating edges: the contact of the enlarged robot piece
   int pair_queries = 0;  ///< core queries run
-  int sub_edges = 0;     ///< sub-edges swept (rotating edges, refinement included)
+  /// Rotating edges: (robot node, world node, time interval) triples tested
+  /// (refinement included).
+  int sub_edges = 0;
 };
 
 /// See the file comment.
@@ -141,8 +181,13 @@ class MddScene {
   int refinementLevels() const { return static_cast<int>(enlarged_.size()) - 1; }
   /// Robot pieces enlarged by delta / 2^level (frame R), level in [0, refinementLevels()].
   const std::vector<scene::Piece>& enlargedPieces(int level) const { return enlarged_.at(level); }
-  /// Number of sub-edges of a rotating edge at the coarse level.
+  /// Number of equal time intervals of a rotating edge that would keep every
+  /// robot point within delta of its interval's middle orientation (the
+  /// intervals the coarsest leaf queries use for a piece at the robot radius).
   int subEdgeCount(double angle) const;
+  /// The hierarchies: the robot's pieces (frame R) and the world's (frame W).
+  const Bvh& robotTree() const { return robot_tree_; }
+  const Bvh& worldTree() const { return world_tree_; }
 
   /// Whether the robot at X_WR touches or overlaps a world piece. `which`
   /// receives the first colliding pair found (p_WC, n_W NaN).
@@ -178,13 +223,10 @@ class MddScene {
   struct WarmTable {
     std::unordered_map<std::uint64_t, WarmStart> map;
   };
-  struct SubEdge {
-    bool free = true;
-    double fraction = std::numeric_limits<double>::infinity();
-    PieceContact contact;
-  };
-  SubEdge checkSubEdge(const EdgeMotion& motion, double ta, double tb, int level, bool first_contact,
-                       EdgeContact* stats) const;
+  /// Rotating edges (see the file comment); mdd_scene_rotation.cpp.
+  void checkRotating(const EdgeMotion& motion, bool first_contact, EdgeContact* out) const;
+  /// Margin that grows the robot's node volumes to hold piece set `set`.
+  double setMargin(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;
   static WarmStart* warmIn(WarmTable& table, int set, int robot_piece, int world_piece);
 
@@ -192,6 +234,8 @@ class MddScene {
   std::shared_ptr<const scene::World> world_;
   double delta_ = 0.0;
   std::vector<std::vector<scene::Piece>> enlarged_;
+  Bvh robot_tree_;  ///< over robot_->pieces(), frame R
+  Bvh world_tree_;  ///< over world_->pieces(), frame W
   PerThread<WarmTable> warm_;
 };
 

@@ -1,0 +1,752 @@
+// Bvh: construction (top-down median split, volumes bottom up so that each
+// node's volumes contain its children's) and the traversals (box and oriented
+// box queries, tree against tree, the branch-and-bound cast).
+#include "mddual/bvh.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+
+#include "mddual/error.h"
+#include "mddual/query.h"
+
+namespace mddual {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Volumes are grown by this fraction of their coordinates' magnitude so that
+/// round-off in fitting them never leaves a point (or a child's volume)
+/// outside. Dimensionless; far below any tolerance of the queries (1e-10).
+constexpr double kPadRel = 1e-13;
+/// The slack of the volume tests (see bvh.h).
+constexpr double kSatSlackRel = kBvhSlackRel;
+/// Added to |R_ij| in the separating-axis tests (Gottschalk's epsilon): a
+/// cross product of nearly parallel edge directions is not a reliable axis.
+constexpr double kParallelEps = 1e-12;
+/// A hull's toi is used as a lower bound less this fraction of the pair's
+/// length scale (the core's answers are accurate to ~1e-10 of it; pieces'
+/// tois computed separately may come out that much below the hull's).
+constexpr double kHullBoundSlackRel = 1e-8;
+/// The OBB of a node minimises (h_x + s)(h_y + s)(h_z + s), s = this fraction
+/// of its longest half extent (so that flat boxes compare by area).
+constexpr double kObbScoreFlatRel = 1e-3;
+
+double magnitude(const Eigen::Vector3d& c, const Eigen::Vector3d& h) {
+  return c.cwiseAbs().maxCoeff() + h.sum();
+}
+
+/// Orthonormal, right-handed columns from `m` (Gram-Schmidt); false when m is
+/// not close to a rotation or reflection.
+bool orthonormalise(Eigen::Matrix3d* m) {
+  Eigen::Vector3d a = m->col(0), b = m->col(1);
+  if (!a.allFinite() || !b.allFinite() || a.norm() < 0.5 || b.norm() < 0.5) return false;
+  a.normalize();
+  b -= b.dot(a) * a;
+  if (b.norm() < 0.5) return false;
+  b.normalize();
+  m->col(0) = a;
+  m->col(1) = b;
+  m->col(2) = a.cross(b);
+  return true;
+}
+
+/// The box with the given axes that holds `points` (grown by the pad).
+Obb fitObb(const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix3d& axes) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInf), hi = Eigen::Vector3d::Constant(-kInf);
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3d y = axes.transpose() * p;
+    lo = lo.cwiseMin(y);
+    hi = hi.cwiseMax(y);
+  }
+  Obb b;
+  b.axes_F = axes;
+  b.centre_F = axes * (0.5 * (lo + hi));
+  b.half = 0.5 * (hi - lo);
+  b.half.array() += kPadRel * (magnitude(b.centre_F, b.half) + lo.cwiseAbs().maxCoeff() + hi.cwiseAbs().maxCoeff());
+  return b;
+}
+
+double obbScore(const Obb& b) {
+  const double s = kObbScoreFlatRel * b.half.maxCoeff();
+  return (b.half.x() + s) * (b.half.y() + s) * (b.half.z() + s);
+}
+
+/// First and second moments of a point set (for the principal axes).
+struct Moments {
+  double n = 0.0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  void add(const Eigen::Vector3d& p) {
+    n += 1.0;
+    sum += p;
+    outer += p * p.transpose();
+  }
+  void add(const Moments& o) {
+    n += o.n;
+    sum += o.sum;
+    outer += o.outer;
+  }
+  /// Principal axes (eigenvectors of the covariance); false when degenerate.
+  bool axes(Eigen::Matrix3d* out) const {
+    if (n < 1.0) return false;
+    const Eigen::Vector3d mean = sum / n;
+    const Eigen::Matrix3d cov = outer / n - mean * mean.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    if (eig.info() != Eigen::Success) return false;
+    *out = eig.eigenvectors();
+    return orthonormalise(out);
+  }
+};
+
+/// The best-scoring box over the candidate axes.
+Obb bestObb(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Matrix3d>& candidates) {
+  Obb best = fitObb(points, Eigen::Matrix3d::Identity());
+  double best_score = obbScore(best);
+  for (const Eigen::Matrix3d& axes : candidates) {
+    const Obb b = fitObb(points, axes);
+    const double s = obbScore(b);
+    if (s < best_score) {
+      best = b;
+      best_score = s;
+    }
+  }
+  return best;
+}
+
+/// Smallest sphere holding spheres (c1, r1) and (c2, r2).
+void encloseSpheres(const Eigen::Vector3d& c1, double r1, const Eigen::Vector3d& c2, double r2, Eigen::Vector3d* c,
+                    double* r) {
+  const double d = (c2 - c1).norm();
+  if (d + r2 <= r1) {
+    *c = c1;
+    *r = r1;
+  } else if (d + r1 <= r2) {
+    *c = c2;
+    *r = r2;
+  } else {
+    *r = 0.5 * (d + r1 + r2);
+    *c = c1 + (*r - r1) / d * (c2 - c1);
+  }
+}
+
+/// Whether spheres (c1, r1) and (c2, r2) are apart by more than `slack`.
+bool spheresApart(const Eigen::Vector3d& c1, double r1, const Eigen::Vector3d& c2, double r2, double slack) {
+  const double r = r1 + r2 + slack;
+  return (c1 - c2).squaredNorm() > r * r;
+}
+
+/// Whether sphere (c, r) misses the sphere (c0, r0) swept from c0 along unit u
+/// by [0, length] (length may be +infinity) by more than `slack`.
+bool sweptSphereApart(const Eigen::Vector3d& c0, double r0, const Eigen::Vector3d& u, double length,
+                      const Eigen::Vector3d& c, double r, double slack) {
+  const double s = std::clamp((c - c0).dot(u), 0.0, length);
+  return spheresApart(c0 + s * u, r0, c, r, slack);
+}
+
+/// The magnitude of a node's coordinates (its volumes'), which scales the
+/// slack of the tests on it.
+double nodeScale(const Obb& obb, const Eigen::Vector3d& centre, double radius) {
+  return std::max(magnitude(obb.centre_F, obb.half), centre.cwiseAbs().maxCoeff() + radius);
+}
+
+/// Posed volumes of a node of the moving set, cached per query.
+struct Posed {
+  Obb obb;
+  Eigen::Vector3d aabb_half;  ///< of the axis-aligned box around obb
+  Eigen::Vector3d centre;
+  double radius = 0.0;
+  double scale = 0.0;  ///< nodeScale of the posed volumes
+};
+
+/// Per-thread scratch of the traversals (one per nesting depth, so that a
+/// callback may run another traversal).
+struct Scratch {
+  std::vector<std::uint64_t> stamp;
+  std::vector<Posed> posed;
+  std::uint64_t generation = 0;
+  std::vector<std::pair<int, int>> stack;
+  struct Entry {
+    double bound;
+    int a, b;
+    bool hull_done;
+  };
+  std::vector<Entry> heap;
+};
+
+class ScratchLease {
+ public:
+  ScratchLease() {
+    if (pool().size() <= depth()) pool().push_back(std::make_unique<Scratch>());
+    scratch_ = pool()[depth()].get();
+    ++depth();
+  }
+  ~ScratchLease() { --depth(); }
+  ScratchLease(const ScratchLease&) = delete;
+  ScratchLease& operator=(const ScratchLease&) = delete;
+  Scratch& operator*() const { return *scratch_; }
+  Scratch* operator->() const { return scratch_; }
+
+ private:
+  static std::vector<std::unique_ptr<Scratch>>& pool() {
+    thread_local std::vector<std::unique_ptr<Scratch>> p;
+    return p;
+  }
+  static std::size_t& depth() {
+    thread_local std::size_t d = 0;
+    return d;
+  }
+  Scratch* scratch_;
+};
+
+/// The moving set's nodes posed in the fixed set's frame, computed on demand.
+class PosedNodes {
+ public:
+  PosedNodes(const Bvh& b, const Eigen::Isometry3d& X_AB, double margin, Scratch& s)
+      : b_(b), X_AB_(X_AB), margin_(margin), s_(s) {
+    if (s_.stamp.size() < static_cast<std::size_t>(b.numNodes())) {
+      s_.stamp.assign(static_cast<std::size_t>(b.numNodes()), 0);
+      s_.posed.resize(static_cast<std::size_t>(b.numNodes()));
+    }
+    ++s_.generation;
+  }
+  const Posed& operator[](int n) {
+    const auto k = static_cast<std::size_t>(n);
+    if (s_.stamp[k] != s_.generation) {
+      const Bvh::Node& node = b_.node(n);
+      s_.posed[k].obb = node.obb.transformed(X_AB_, margin_);
+      s_.posed[k].aabb_half = s_.posed[k].obb.aabbHalf();
+      s_.posed[k].centre = X_AB_ * node.centre;
+      s_.posed[k].radius = node.radius + margin_;
+      s_.posed[k].scale = nodeScale(s_.posed[k].obb, s_.posed[k].centre, s_.posed[k].radius);
+      s_.stamp[k] = s_.generation;
+    }
+    return s_.posed[k];
+  }
+
+ private:
+  const Bvh& b_;
+  const Eigen::Isometry3d& X_AB_;
+  double margin_;
+  Scratch& s_;
+};
+
+/// Which node of a pair to descend: the larger one that has children.
+bool descendA(const Bvh::Node& a, const Bvh::Node& b) {
+  if (b.isLeaf()) return true;
+  if (a.isLeaf()) return false;
+  return a.radius >= b.radius;
+}
+
+/// Separating-axis data of two boxes: b's axes and centre offset in a's frame.
+struct SatFrame {
+  Eigen::Matrix3d R, absR;
+  Eigen::Vector3d t;
+  double slack;
+  SatFrame(const Obb& a, const Obb& b, double slack_) : slack(slack_) {
+    R = a.axes_F.transpose() * b.axes_F;
+    absR = R.cwiseAbs().array() + kParallelEps;
+    t = a.axes_F.transpose() * (b.centre_F - a.centre_F);
+  }
+};
+
+double satSlack(const Obb& a, const Obb& b) {
+  return kSatSlackRel * (magnitude(a.centre_F, a.half) + magnitude(b.centre_F, b.half));
+}
+
+}  // namespace
+
+// ---- Obb ---------------------------------------------------------------------------
+
+Obb Obb::transformed(const Eigen::Isometry3d& X_GF, double margin) const {
+  Obb out;
+  out.centre_F = X_GF * centre_F;
+  out.axes_F = X_GF.linear() * axes_F;
+  out.half = half.array() + margin;
+  return out;
+}
+
+std::array<Eigen::Vector3d, 8> Obb::corners() const {
+  std::array<Eigen::Vector3d, 8> out;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d s((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0);
+    out[static_cast<std::size_t>(c)] = centre_F + axes_F * s.cwiseProduct(half);
+  }
+  return out;
+}
+
+bool Obb::contains(const Eigen::Vector3d& p_F, double tol) const {
+  const Eigen::Vector3d y = axes_F.transpose() * (p_F - centre_F);
+  return (y.cwiseAbs() - half).maxCoeff() <= tol;
+}
+
+bool obbsDisjoint(const Obb& a, const Obb& b, double slack) {
+  const SatFrame f(a, b, slack);
+  const Eigen::Vector3d& ha = a.half;
+  const Eigen::Vector3d& hb = b.half;
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(f.t[i]) > ha[i] + hb.dot(f.absR.row(i)) + f.slack) return true;
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (std::abs(f.t.dot(f.R.col(j))) > ha.dot(f.absR.col(j)) + hb[j] + f.slack) return true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ha[i1] * f.absR(i2, j) + ha[i2] * f.absR(i1, j);
+      const double rb = hb[j1] * f.absR(i, j2) + hb[j2] * f.absR(i, j1);
+      if (std::abs(f.t[i2] * f.R(i1, j) - f.t[i1] * f.R(i2, j)) > ra + rb + f.slack) return true;
+    }
+  }
+  return false;
+}
+
+namespace {
+
+/// obbCastInterval; without the 9 edge-direction axes when edge_axes is
+/// false (a superset of the overlap interval: its entry is still a lower
+/// bound of the true one, for less work).
+bool castInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double slack,
+                  bool edge_axes, double* s_lo, double* s_hi) {
+  const SatFrame f(fixed, moving, slack);
+  const Eigen::Vector3d w = fixed.axes_F.transpose() * u;
+  double lo = 0.0, hi = max_s;
+  // Along an axis: |p + s q| <= r.
+  const auto cut = [&](double p, double q, double r) {
+    if (q == 0.0) return std::abs(p) <= r;
+    double s0 = (-r - p) / q, s1 = (r - p) / q;
+    if (s0 > s1) std::swap(s0, s1);
+    lo = std::max(lo, s0);
+    hi = std::min(hi, s1);
+    return lo <= hi;
+  };
+  const Eigen::Vector3d& ha = fixed.half;
+  const Eigen::Vector3d& hb = moving.half;
+  for (int i = 0; i < 3; ++i) {
+    if (!cut(f.t[i], w[i], ha[i] + hb.dot(f.absR.row(i)) + f.slack)) return false;
+  }
+  for (int j = 0; j < 3; ++j) {
+    if (!cut(f.t.dot(f.R.col(j)), w.dot(f.R.col(j)), ha.dot(f.absR.col(j)) + hb[j] + f.slack)) return false;
+  }
+  if (!edge_axes) {
+    *s_lo = lo;
+    *s_hi = hi;
+    return true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double ra = ha[i1] * f.absR(i2, j) + ha[i2] * f.absR(i1, j);
+      const double rb = hb[j1] * f.absR(i, j2) + hb[j2] * f.absR(i, j1);
+      const double p = f.t[i2] * f.R(i1, j) - f.t[i1] * f.R(i2, j);
+      const double q = w[i2] * f.R(i1, j) - w[i1] * f.R(i2, j);
+      if (!cut(p, q, ra + rb + f.slack)) return false;
+    }
+  }
+  *s_lo = lo;
+  *s_hi = hi;
+  return true;
+}
+
+}  // namespace
+
+bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double slack,
+                     double* s_lo, double* s_hi) {
+  return castInterval(fixed, moving, u, max_s, slack, true, s_lo, s_hi);
+}
+
+bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
+                    const Eigen::Vector3d& u, double max_s, double slack) {
+  double lo = 0.0, hi = max_s;
+  for (int k = 0; k < 3; ++k) {
+    // c_k + s u_k must lie in [a, b] for the boxes to overlap along axis k.
+    const double a = box.min()[k] - h[k] - slack, b = box.max()[k] + h[k] + slack;
+    if (u[k] == 0.0) {
+      if (c[k] < a || c[k] > b) return true;
+      continue;
+    }
+    double s0 = (a - c[k]) / u[k], s1 = (b - c[k]) / u[k];
+    if (s0 > s1) std::swap(s0, s1);
+    lo = std::max(lo, s0);
+    hi = std::min(hi, s1);
+    if (lo > hi) return true;
+  }
+  return false;
+}
+
+bool obbsDisjoint(const Obb& a, const Obb& b) {
+  return obbsDisjoint(a, b, satSlack(a, b));
+}
+
+bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double* s_lo,
+                     double* s_hi) {
+  return obbCastInterval(fixed, moving, u, max_s, satSlack(fixed, moving), s_lo, s_hi);
+}
+
+bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
+                    const Eigen::Vector3d& u, double max_s) {
+  const double slack =
+      kSatSlackRel * (magnitude(c, h) + box.min().cwiseAbs().maxCoeff() + box.max().cwiseAbs().maxCoeff());
+  return sweptAabbApart(box, c, h, u, max_s, slack);
+}
+
+// ---- Construction --------------------------------------------------------------------
+
+Bvh::Bvh(const std::vector<std::vector<Eigen::Vector3d>>& pieces_S, const BvhOptions& options) {
+  if (options.hull_max_pieces < 0) {
+    throw InvalidInputError("Bvh: hull_max_pieces is negative (" + std::to_string(options.hull_max_pieces) + ")");
+  }
+  const int n = static_cast<int>(pieces_S.size());
+  std::vector<std::vector<Eigen::Vector3d>> points = pieces_S;
+  std::vector<Eigen::Vector3d> centres(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const std::vector<Eigen::Vector3d>& p = points[static_cast<std::size_t>(k)];
+    if (p.empty()) throw InvalidInputError("Bvh: piece " + std::to_string(k) + " has no points");
+    Eigen::AlignedBox3d box;
+    for (std::size_t v = 0; v < p.size(); ++v) {
+      if (!p[v].allFinite()) {
+        throw InvalidInputError("Bvh: piece " + std::to_string(k) + ", point " + std::to_string(v) +
+                                " has a non-finite coordinate");
+      }
+      box.extend(p[v]);
+    }
+    centres[static_cast<std::size_t>(k)] = box.center();
+  }
+  if (n == 0) return;
+  order_.resize(static_cast<std::size_t>(n));
+  std::iota(order_.begin(), order_.end(), 0);
+  leaf_of_.assign(static_cast<std::size_t>(n), -1);
+  nodes_.reserve(static_cast<std::size_t>(2 * n - 1));
+  height_ = 0;
+  build(points, centres, 0, n, 0, options);
+}
+
+Bvh Bvh::fromPolytopes(const std::vector<const ConvexPolytope*>& polytopes, const std::vector<Eigen::Isometry3d>& X_SP,
+                       const BvhOptions& options) {
+  if (!X_SP.empty() && X_SP.size() != polytopes.size()) {
+    throw InvalidInputError("Bvh::fromPolytopes: " + std::to_string(X_SP.size()) + " poses for " +
+                            std::to_string(polytopes.size()) + " polytopes");
+  }
+  std::vector<std::vector<Eigen::Vector3d>> points(polytopes.size());
+  for (std::size_t k = 0; k < polytopes.size(); ++k) {
+    if (!polytopes[k]) throw InvalidInputError("Bvh::fromPolytopes: polytope " + std::to_string(k) + " is null");
+    points[k] = polytopes[k]->vertices();
+    if (!X_SP.empty()) {
+      for (Eigen::Vector3d& p : points[k]) p = X_SP[k] * p;
+    }
+  }
+  return Bvh(points, options);
+}
+
+const ConvexPolytope* Bvh::hull(int n) const {
+  const int h = node(n).hull;
+  return h < 0 ? nullptr : hulls_[static_cast<std::size_t>(h)].get();
+}
+
+int Bvh::build(std::vector<std::vector<Eigen::Vector3d>>& points, std::vector<Eigen::Vector3d>& centres, int first,
+               int count, int depth, const BvhOptions& options) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.emplace_back();
+  height_ = std::max(height_, depth);
+  const auto at = [&](int k) { return order_[static_cast<std::size_t>(k)]; };
+  if (count == 1) {
+    const int piece = at(first);
+    const std::vector<Eigen::Vector3d>& p = points[static_cast<std::size_t>(piece)];
+    Node leaf;
+    leaf.first = first;
+    leaf.count = 1;
+    Moments m;
+    for (const Eigen::Vector3d& v : p) {
+      leaf.box.extend(v);
+      m.add(v);
+      leaf.max_norm = std::max(leaf.max_norm, v.norm());
+    }
+    std::vector<Eigen::Matrix3d> candidates;
+    Eigen::Matrix3d pca;
+    if (m.axes(&pca)) candidates.push_back(pca);
+    leaf.obb = bestObb(p, candidates);
+    // Sphere about the box centre or the mean, whichever is smaller.
+    double best = kInf;
+    for (const Eigen::Vector3d& c : {Eigen::Vector3d(leaf.box.center()), Eigen::Vector3d(m.sum / m.n)}) {
+      double r = 0.0;
+      for (const Eigen::Vector3d& v : p) r = std::max(r, (v - c).norm());
+      if (r < best) {
+        best = r;
+        leaf.centre = c;
+      }
+    }
+    const double pad = kPadRel * (leaf.box.max().cwiseAbs().maxCoeff() + leaf.box.min().cwiseAbs().maxCoeff());
+    leaf.radius = best + pad;
+    leaf.box.min().array() -= pad;
+    leaf.box.max().array() += pad;
+    leaf.max_norm += pad;
+    leaf.scale = std::max({nodeScale(leaf.obb, leaf.centre, leaf.radius), leaf.box.min().cwiseAbs().maxCoeff(),
+                           leaf.box.max().cwiseAbs().maxCoeff()});
+    nodes_[static_cast<std::size_t>(index)] = leaf;
+    leaf_of_[static_cast<std::size_t>(piece)] = index;
+    return index;
+  }
+  // Split at the median of the pieces' centres along the longest axis of
+  // their bounds (equal halves when they all coincide).
+  Eigen::AlignedBox3d cbox;
+  for (int k = first; k < first + count; ++k) cbox.extend(centres[static_cast<std::size_t>(at(k))]);
+  int axis = 0;
+  cbox.sizes().maxCoeff(&axis);
+  const int half = count / 2;
+  std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+                   [&](int x, int y) {
+                     const double cx = centres[static_cast<std::size_t>(x)][axis];
+                     const double cy = centres[static_cast<std::size_t>(y)][axis];
+                     return cx < cy || (cx == cy && x < y);
+                   });
+  const int left = build(points, centres, first, half, depth + 1, options);
+  const int right = build(points, centres, first + half, count - half, depth + 1, options);
+  const Node& l = nodes_[static_cast<std::size_t>(left)];
+  const Node& r = nodes_[static_cast<std::size_t>(right)];
+  Node inner;
+  inner.left = left;
+  inner.right = right;
+  inner.first = first;
+  inner.count = count;
+  inner.box = l.box.merged(r.box);
+  inner.max_norm = std::max(l.max_norm, r.max_norm);
+  // The volumes are fitted to the pieces' points (tighter than volumes
+  // around the children's volumes): the oriented box over candidate axes
+  // (the points' principal axes, the children's axes, the frame's axes), the
+  // sphere about the box centre or the mean, or around the children's spheres,
+  // whichever is smallest.
+  std::vector<Eigen::Vector3d> all;
+  Moments m;
+  for (int k = first; k < first + count; ++k) {
+    for (const Eigen::Vector3d& v : points[static_cast<std::size_t>(at(k))]) {
+      all.push_back(v);
+      m.add(v);
+    }
+  }
+  std::vector<Eigen::Matrix3d> candidates{l.obb.axes_F, r.obb.axes_F};
+  Eigen::Matrix3d pca;
+  if (m.axes(&pca)) candidates.push_back(pca);
+  inner.obb = bestObb(all, candidates);
+  encloseSpheres(l.centre, l.radius, r.centre, r.radius, &inner.centre, &inner.radius);
+  for (const Eigen::Vector3d& c : {inner.obb.centre_F, Eigen::Vector3d(m.sum / m.n)}) {
+    double radius = 0.0;
+    for (const Eigen::Vector3d& v : all) radius = std::max(radius, (v - c).norm());
+    if (radius < inner.radius) {
+      inner.radius = radius;
+      inner.centre = c;
+    }
+  }
+  inner.radius += kPadRel * (inner.centre.cwiseAbs().maxCoeff() + inner.radius);
+  inner.scale = std::max({nodeScale(inner.obb, inner.centre, inner.radius), inner.box.min().cwiseAbs().maxCoeff(),
+                          inner.box.max().cwiseAbs().maxCoeff()});
+  if (options.hull_max_pieces >= 2 && count <= options.hull_max_pieces) {
+    try {
+      hulls_.push_back(std::make_shared<const ConvexPolytope>(ConvexPolytope::fromPoints(all)));
+      inner.hull = static_cast<int>(hulls_.size()) - 1;
+    } catch (const Error&) {
+      inner.hull = -1;  // no hull for this node: its boxes bound it
+    }
+  }
+  nodes_[static_cast<std::size_t>(index)] = inner;
+  return index;
+}
+
+// ---- Queries -------------------------------------------------------------------------
+
+bool Bvh::queryBox(const Eigen::AlignedBox3d& box_S, FunctionRef<bool(int)> fn) const {
+  if (empty()) return true;
+  ScratchLease s;
+  s->stack.clear();
+  s->stack.emplace_back(0, 0);
+  while (!s->stack.empty()) {
+    const int n = s->stack.back().first;
+    s->stack.pop_back();
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (!node.box.intersects(box_S)) continue;
+    if (node.isLeaf()) {
+      if (!fn(leafPiece(n))) return false;
+      continue;
+    }
+    s->stack.emplace_back(node.right, 0);
+    s->stack.emplace_back(node.left, 0);
+  }
+  return true;
+}
+
+bool Bvh::queryObb(const Obb& obb_S, FunctionRef<bool(int)> fn) const {
+  if (empty()) return true;
+  ScratchLease s;
+  s->stack.clear();
+  s->stack.emplace_back(0, 0);
+  while (!s->stack.empty()) {
+    const int n = s->stack.back().first;
+    s->stack.pop_back();
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (obbsDisjoint(node.obb, obb_S)) continue;
+    if (node.isLeaf()) {
+      if (!fn(leafPiece(n))) return false;
+      continue;
+    }
+    s->stack.emplace_back(node.right, 0);
+    s->stack.emplace_back(node.left, 0);
+  }
+  return true;
+}
+
+bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, double margin_b,
+                            FunctionRef<bool(int, int)> fn, BvhStats* stats) {
+  if (!(margin_b >= 0.0)) throw InvalidInputError("forEachOverlappingPair: margin_b is negative or NaN");
+  if (a.empty() || b.empty()) return true;
+  ScratchLease s;
+  PosedNodes posed(b, X_AB, margin_b, *s);
+  s->stack.clear();
+  s->stack.emplace_back(a.root(), b.root());
+  BvhStats local;
+  bool completed = true;
+  while (!s->stack.empty()) {
+    const auto [na, nb] = s->stack.back();
+    s->stack.pop_back();
+    const Bvh::Node& A = a.node(na);
+    const Bvh::Node& B = b.node(nb);
+    const Posed& pb = posed[nb];
+    ++local.node_pairs;
+    const double slack = kSatSlackRel * (A.scale + pb.scale);
+    if (spheresApart(A.centre, A.radius, pb.centre, pb.radius, slack)) continue;
+    if (sweptAabbApart(A.box, pb.obb.centre_F, pb.aabb_half, Eigen::Vector3d::Zero(), 0.0, slack)) continue;
+    if (obbsDisjoint(A.obb, pb.obb, slack)) continue;
+    if (A.isLeaf() && B.isLeaf()) {
+      ++local.leaf_pairs;
+      if (!fn(a.leafPiece(na), b.leafPiece(nb))) {
+        completed = false;
+        break;
+      }
+      continue;
+    }
+    if (descendA(A, B)) {
+      s->stack.emplace_back(A.right, nb);
+      s->stack.emplace_back(A.left, nb);
+    } else {
+      s->stack.emplace_back(na, B.right);
+      s->stack.emplace_back(na, B.left);
+    }
+  }
+  if (stats) {
+    stats->node_pairs += local.node_pairs;
+    stats->leaf_pairs += local.leaf_pairs;
+  }
+  return completed;
+}
+
+CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& u_A,
+                  double max_distance, CastLeafFn leaf, const CastOptions& options, BvhStats* stats) {
+  const double norm = u_A.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm)) throw InvalidInputError("castFirst: the direction is zero or not finite");
+  if (!(max_distance >= 0.0)) throw InvalidInputError("castFirst: max_distance is negative or NaN");
+  if (!(options.margin_b >= 0.0)) throw InvalidInputError("castFirst: margin_b is negative or NaN");
+  CastHit hit;
+  if (a.empty() || b.empty()) return hit;
+  const Eigen::Vector3d u = u_A / norm;
+  const bool hulls = options.use_hulls && options.margin_b == 0.0 && a.numHulls() > 0 && b.numHulls() > 0;
+  ScratchLease s;
+  PosedNodes posed(b, X_AB, options.margin_b, *s);
+  BvhStats local;
+  double best = kInf;  // best contact so far (a pair's distance <= the limit)
+  const auto limit = [&] { return std::min(best, max_distance); };
+  // Lower bound of the pair's contact distance, or +inf when it is pruned.
+  const auto bound = [&](int na, int nb) {
+    ++local.node_pairs;
+    const Bvh::Node& A = a.node(na);
+    const Posed& pb = posed[nb];
+    const double lim = limit();
+    const double slack = kSatSlackRel * (A.scale + pb.scale + (std::isfinite(lim) ? lim : 0.0));
+    if (sweptSphereApart(pb.centre, pb.radius, u, lim, A.centre, A.radius, slack)) return kInf;
+    if (sweptAabbApart(A.box, pb.obb.centre_F, pb.aabb_half, u, lim, slack)) return kInf;
+    double lo = 0.0, hi = 0.0;
+    // The face axes only: on the scenes of the planning benchmark the edge
+    // axes cost more than the node pairs they prune.
+    if (!castInterval(A.obb, pb.obb, u, lim, slack, false, &lo, &hi)) return kInf;
+    return lo;
+  };
+  using Entry = Scratch::Entry;
+  const auto later = [](const Entry& x, const Entry& y) { return x.bound > y.bound; };
+  std::vector<Entry>& heap = s->heap;
+  heap.clear();
+  const auto push = [&](int na, int nb) {
+    const double lb = bound(na, nb);
+    if (lb < best && lb <= max_distance) {
+      heap.push_back(Entry{lb, na, nb, false});
+      std::push_heap(heap.begin(), heap.end(), later);
+    }
+  };
+  push(a.root(), b.root());
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    Entry e = heap.back();
+    heap.pop_back();
+    if (e.bound >= best) break;  // every remaining pair is bounded below by e.bound
+    const Bvh::Node& A = a.node(e.a);
+    const Bvh::Node& B = b.node(e.b);
+    if (A.isLeaf() && B.isLeaf()) {
+      ++local.leaf_pairs;
+      const double lim = limit();
+      const double d = leaf(a.leafPiece(e.a), b.leafPiece(e.b), lim);
+      if (d <= lim && d < best) {
+        best = d;
+        hit.distance = d;
+        hit.piece_a = a.leafPiece(e.a);
+        hit.piece_b = b.leafPiece(e.b);
+        if (!options.first_contact) break;
+      }
+      continue;
+    }
+    if (hulls && !e.hull_done && A.hull >= 0 && B.hull >= 0) {
+      // Raise the bound to the hulls' toi (computed only for pairs that reach
+      // the top of the heap), then put the pair back.
+      e.hull_done = true;
+      ++local.hull_queries;
+      DirectionalInput in;
+      in.a = a.hull(e.a);
+      in.b = b.hull(e.b);
+      in.X_WB = X_AB;
+      in.s_W = u;
+      in.max_distance = limit();
+      try {
+        const ToiResult r = toi(in);
+        if (r.status == ToiStatus::kNever) continue;
+        if (r.status == ToiStatus::kHit) {
+          const double scale =
+              std::max({in.a->radius(), in.b->radius(), (X_AB * in.b->centroid() - in.a->centroid()).norm()});
+          e.bound = std::max(e.bound, r.toi - kHullBoundSlackRel * scale);
+        }
+      } catch (const Error&) {
+        // Keep the boxes' bound.
+      }
+      if (e.bound < best) {
+        heap.push_back(e);
+        std::push_heap(heap.begin(), heap.end(), later);
+      }
+      continue;
+    }
+    if (descendA(A, B)) {
+      push(A.left, e.b);
+      push(A.right, e.b);
+    } else {
+      push(e.a, B.left);
+      push(e.a, B.right);
+    }
+  }
+  if (stats) {
+    stats->node_pairs += local.node_pairs;
+    stats->leaf_pairs += local.leaf_pairs;
+    stats->hull_queries += local.hull_queries;
+  }
+  return hit;
+}
+
+}  // namespace mddual

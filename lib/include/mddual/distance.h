@@ -46,10 +46,6 @@ struct DistanceInput {
   Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
   const ConvexPolytope* b = nullptr;  ///< polytope B (not owned)
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
-  /// When false, an overlapping pair is reported as kPenetrating with
-  /// distance 0 and witness points NaN, without computing the penetration
-  /// depth (for a caller that only needs "colliding"). Default: compute it.
-  bool penetration_depth = true;
 };
 
 /// Work done by one distance() query.
@@ -68,7 +64,7 @@ struct DistanceStats {
 /// |--------------|---------------------|-----------------------------------------|----------------------|
 /// | kSeparated   | |p_WB - p_WA| > 0   | closest points of A and of B            | (p_WB - p_WA) / dist |
 /// | kTouching    | 0                   | a common point (|p_WB - p_WA| <= tol)   | NaN                  |
-/// | kPenetrating | -PD (<= 0, see row) | deepest pair: p_WA - p_WB = PD normal_W | unit, A toward B     |
+/// | kPenetrating | -PD < 0             | deepest pair: p_WA - p_WB = PD normal_W | unit, A toward B     |
 ///
 /// kSeparated: distance is exact to kDistanceGapRel * L; lower_bound is
 /// GJK's support-function lower bound (distance - lower_bound <=
@@ -76,9 +72,9 @@ struct DistanceStats {
 /// the closest features (stats.polished).
 /// kTouching: |true distance| <= kTouchRel * L. kPenetrating: PD is the
 /// penetration depth (penetration.h, exact method): B translated by PD
-/// normal_W touches A; p_WA is a point of A and p_WB = p_WA - PD normal_W a
-/// point of B (B translated by PD normal_W touches A at p_WA). With
-/// input.penetration_depth false: distance 0, p_WA / p_WB / normal_W NaN.
+/// normal_W touches A; p_WA is a point of A and p_WB a point of B with
+/// p_WA - p_WB = PD normal_W up to the touch tolerance (B translated by PD
+/// normal_W touches A at p_WA).
 /// lower_bound: kSeparated as above; 0 for kTouching; distance otherwise.
 struct DistanceResult {
   DistanceStatus status = DistanceStatus::kSeparated;

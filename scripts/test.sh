@@ -17,8 +17,11 @@ cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"
 
 echo "== core tests under address + undefined sanitizers"
+# Core only: the planning layer is not needed for the core tests (its
+# concurrency test has its own ThreadSanitizer build below).
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE=address,undefined \
-  -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
+  -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=OFF -DMDDUAL_BUILD_PYTHON=OFF \
+  -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/sanitize -L core --output-on-failure -j "$jobs"

@@ -27,6 +27,7 @@
 #include <map>
 
 #include "mddual/penetration.h"
+#include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/scene_distance.h"
 #include "test_support.h"
 
@@ -37,19 +38,6 @@ namespace ob = ompl::base;
 using testing::Fixture;
 
 constexpr double kAccuracyRel = 1e-9;  ///< of the scene's size (issue 10)
-
-std::shared_ptr<fcl::Convex<double>> fclConvex(const ConvexPolytope& p) {
-  auto vertices = std::make_shared<std::vector<fcl::Vector3<double>>>(p.vertices().begin(), p.vertices().end());
-  auto faces = std::make_shared<std::vector<int>>();
-  for (int f = 0; f < p.numFaces(); ++f) {
-    const IndexRange loop = p.faceVertices(f);
-    faces->push_back(loop.size());
-    faces->insert(faces->end(), loop.begin(), loop.end());
-  }
-  auto convex = std::make_shared<fcl::Convex<double>>(vertices, p.numFaces(), faces, /*throw_if_invalid=*/false);
-  convex->computeLocalAABB();
-  return convex;
-}
 
 /// The FCL models of a scene's pieces, built once per scene.
 class FclPieces {

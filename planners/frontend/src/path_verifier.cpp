@@ -122,6 +122,8 @@ VerifyResult PathVerifier::verify(const PlanningSpace& space, const std::vector<
       break;
     }
   }
+  const auto mdd_end = std::chrono::steady_clock::now();
+  r.mdd_seconds = std::chrono::duration<double>(mdd_end - start).count();
   // (b) dense FCL check, the states themselves first (OMPL's SO(3)
   // interpolation may not end exactly at s2).
   if (!r.mdd_collision || options_.always_run_both) {
@@ -149,7 +151,9 @@ VerifyResult PathVerifier::verify(const PlanningSpace& space, const std::vector<
     }
   }
   r.valid = !r.mdd_collision && !r.fcl_collision && !r.out_of_bounds;
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto end = std::chrono::steady_clock::now();
+  r.fcl_seconds = std::chrono::duration<double>(end - mdd_end).count();
+  r.seconds = std::chrono::duration<double>(end - start).count();
   return r;
 }
 

@@ -78,6 +78,8 @@ struct VerifyResult {
   long long fcl_unconfirmed = 0;   ///< FCL collisions the brute force found to be touching only
   long long mdd_pair_queries = 0;  ///< core queries of check (a)
   double seconds = 0.0;            ///< time of the whole verification
+  double mdd_seconds = 0.0;        ///< of which check (a)
+  double fcl_seconds = 0.0;        ///< of which check (b), brute-force confirmations included
 };
 
 /// See the file comment. Immutable after construction; verify() may be called

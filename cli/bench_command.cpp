@@ -519,6 +519,7 @@ void runBenchCommand(const BenchFlags& f) {
   } catch (const std::exception& e) {
     throw FatalError(e.what());
   }
+  std::cerr << "bench: scene: " << scene::sceneSummary(*problem.scene) << "\n";
   for (const std::string& w : problem.scene->warnings) std::cerr << "bench: warning: " << w << "\n";
   if (!f.output.empty()) {
     options.output_dir = f.output;

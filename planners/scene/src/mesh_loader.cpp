@@ -555,8 +555,7 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
     switch (check.verdict) {
       case ConvexityVerdict::kWitness:
         why = "triangle " + std::to_string(tri_index[static_cast<std::size_t>(check.triangle)]) +
-              " has mesh points on both sides of its plane, farther than a tilt within " +
-              shortNumber(plane_tol) + " explains";
+              " has mesh points on both sides of its plane, beyond what the tolerance allows";
         break;
       case ConvexityVerdict::kOffHull:
         why = "triangle " + std::to_string(tri_index[static_cast<std::size_t>(check.triangle)]) + " is farther than " +

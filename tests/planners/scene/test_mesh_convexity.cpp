@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -244,6 +245,123 @@ TEST(MeshConvexity, ClosedMeshThatEnclosesNothingIsNotItsHull) {
   // The cube itself, closed and oriented, is covered by its volume.
   const std::vector<Eigen::Vector3d> cube = boxTriangles({0, 0, 0}, {1, 1, 1});
   EXPECT_TRUE(detail::checkConvexity(cube, 1e-6, &ConvexPolytope::fromPoints, true).convex);
+}
+
+/// A random convex prism (a rock): a convex polygon of `sides` corners on the
+/// unit circle, extruded over z in [0, height]. Its caps are n-gons and its
+/// sides quads, so that moving its vertices folds its faces (a triangulated
+/// polygon or quad stays convex only if every fold is a ridge). `vertices`
+/// and `faces` receive the mesh (closed, outward-wound, shared vertices), each
+/// vertex moved by `noise` in a random direction; returns its OBJ text.
+std::string prismRock(std::mt19937* rng, int sides, double height, double noise, std::vector<Eigen::Vector3d>* vertices,
+                      std::vector<std::array<int, 3>>* faces) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> angles;
+  for (int i = 0; i < sides; ++i) angles.push_back(2.0 * M_PI * (i + 0.4 * u(*rng)) / sides);
+  vertices->clear();
+  for (const double z : {0.0, height}) {
+    for (const double a : angles) {
+      const Eigen::Vector3d d(u(*rng), u(*rng), u(*rng));
+      vertices->push_back(Eigen::Vector3d(std::cos(a), std::sin(a), z) + noise * d.normalized());
+    }
+  }
+  const int n = sides;
+  faces->clear();
+  for (int i = 1; i + 1 < n; ++i) {
+    faces->push_back({0, i + 1, i});          // bottom, seen from below
+    faces->push_back({n, n + i, n + i + 1});  // top
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    faces->push_back({i, j, n + j});
+    faces->push_back({i, n + j, n + i});
+  }
+  std::ostringstream s;
+  s.precision(17);
+  for (const Eigen::Vector3d& p : *vertices) s << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
+  for (const auto& f : *faces) s << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
+  return s.str();
+}
+
+/// Volume and surface area of a polytope (pyramids over its faces from its
+/// centroid).
+std::pair<double, double> volumeAndArea(const ConvexPolytope& P) {
+  double volume = 0.0;
+  double area = 0.0;
+  for (int f = 0; f < P.numFaces(); ++f) {
+    const IndexRange loop = P.faceVertices(f);
+    Eigen::Vector3d twice = Eigen::Vector3d::Zero();
+    for (int i = 1; i + 1 < loop.size(); ++i) {
+      twice += (P.vertex(loop[i]) - P.vertex(loop[0])).cross(P.vertex(loop[i + 1]) - P.vertex(loop[0]));
+    }
+    area += 0.5 * twice.norm();
+    volume += 0.5 * twice.norm() * (P.faceOffset(f) - P.faceNormal(f).dot(P.centroid())) / 3.0;
+  }
+  return {volume, area};
+}
+
+// The convex_field case of issue 10 as a family: 40 random prism rocks whose
+// vertices are moved by 0.1 of the tolerance all load as one convex piece;
+// moved by 10 times it, most do not, and every one that still loads as its
+// hull is its hull within e (oracle: every vertex of the mesh within e of the
+// hull's boundary; the hull's volume at least the mesh's, and larger by at
+// most e times the hull's area).
+TEST(MeshConvexity, RandomPrismRocks) {
+  TempDir dir;
+  std::mt19937 rng(31);
+  std::uniform_int_distribution<int> sides(4, 9);
+  std::uniform_real_distribution<double> height(0.3, 2.0);
+  int soups = 0;
+  for (int rock = 0; rock < 40; ++rock) {
+    SCOPED_TRACE("rock " + std::to_string(rock));
+    const int n = sides(rng);
+    const double h = height(rng);
+    // The bounding box is at least 1 x 1 x h (a convex polygon around the
+    // centre of the unit circle): the noise stays within the stated fraction.
+    const double size = std::sqrt(2.0 + h * h);
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<std::array<int, 3>> faces;
+    for (const double factor : {0.1, 10.0}) {
+      const double noise = factor * kDefaultMeshConvexTolerance * size;
+      const auto file = dir.write("rock.obj", prismRock(&rng, n, h, noise, &vertices, &faces));
+      MeshInfo info;
+      const std::vector<Piece> pieces = meshPieces(file, kOnes, kIdentity, {}, &info);
+      ASSERT_TRUE(info.closed);
+      ASSERT_TRUE(info.oriented);
+      if (factor < 1.0) {
+        EXPECT_TRUE(info.convex) << (info.warnings.empty() ? "" : info.warnings[0]);
+      }
+      if (!info.convex) {
+        ++soups;
+        EXPECT_EQ(pieces.size(), static_cast<std::size_t>(4 * n - 4));
+        EXPECT_TRUE(mentions(info.warnings, kHollow));
+        continue;
+      }
+      ASSERT_EQ(pieces.size(), 1u);
+      const ConvexPolytope& hull = pieces[0].polytope;
+      const Eigen::AlignedBox3d& box = pieces[0].box;
+      const double largest = std::max(box.min().cwiseAbs().maxCoeff(), box.max().cwiseAbs().maxCoeff());
+      const double e = kDefaultMeshConvexTolerance * box.diagonal().norm() + 5e-7 * largest;
+      // The mesh as the reader keeps it (assimp's own float parsing).
+      const detail::MeshData data = detail::readMesh(file);
+      double mesh_volume = 0.0;
+      for (std::size_t t = 0; t < data.triangles.size(); t += 3) {
+        mesh_volume += data.triangles[t].dot(data.triangles[t + 1].cross(data.triangles[t + 2])) / 6.0;
+      }
+      const auto [hull_volume, hull_area] = volumeAndArea(hull);
+      EXPECT_GE(hull_volume, mesh_volume - 1e-12);
+      EXPECT_LE(hull_volume - mesh_volume, e * hull_area);
+      for (const Eigen::Vector3d& p : data.vertices) {
+        double depth = std::numeric_limits<double>::infinity();
+        for (int f = 0; f < hull.numFaces(); ++f)
+          depth = std::min(depth, hull.faceOffset(f) - hull.faceNormal(f).dot(p));
+        EXPECT_GE(depth, -1e-12);
+        EXPECT_LE(depth, e);
+      }
+    }
+  }
+  EXPECT_GE(soups, 20);  // the coarse noise folds most rocks into a valley somewhere
+  RecordProperty("coarse_soups", soups);
 }
 
 // A large, nearly coplanar, closed mesh: a slab 10 x 10 x 1 whose six faces

@@ -467,13 +467,13 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
                                         const std::string& origin_prefix, MeshInfo* info) {
   if (!scale.allFinite()) throw SceneError(display(file) + ": the mesh scale has a non-finite entry");
   if (!X_OM.matrix().allFinite()) throw SceneError(display(file) + ": the mesh pose has a non-finite entry");
-  requireMeshConvexTolerance(options.mesh_convex_tolerance, display(file));
   MeshData data = readMesh(file);
   MeshInfo local;
   MeshInfo& out = info != nullptr ? *info : local;
   out = MeshInfo{};
   out.vertices = static_cast<int>(data.vertices.size());
   out.triangles = static_cast<int>(data.triangles.size() / 3);
+  requireMeshConvexTolerance(options.mesh_convex_tolerance, display(file));
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& v : data.vertices) mean += scale.cwiseProduct(v);
   mean /= static_cast<double>(std::max<std::size_t>(1, data.vertices.size()));

@@ -148,11 +148,12 @@ World loadWorld(const std::filesystem::path& file, const LoadOptions& options = 
 ///      area is A within a relative 1e-5 (meshes whose faces are split with
 ///      T-junctions, which are not closed by shared edges, and bodies thinner
 ///      than about 2e).
-/// H then holds the mesh, and every point of H that the closed mesh does not
-/// enclose is within e of H's boundary: by 1 the mesh does not reach H's
-/// points deeper than e, which form one convex region, so they are all
-/// inside the mesh or all outside, and by 2 (a volume larger than the skin's)
-/// they are inside.
+/// H always holds the mesh. When 2 holds by volume, every point of H that the
+/// mesh does not enclose is within e of H's boundary: by 1 the mesh does not
+/// reach H's points deeper than e, which form one convex region, so they are
+/// all inside the mesh or all outside, and the enclosed volume, larger than
+/// the skin's, puts them inside. By area, the mesh's surface is as large as
+/// H's and lies within e of it (a hole would show as missing area).
 /// A closed mesh (MeshInfo::closed) loaded as triangles is hollow: a warning
 /// names the file and says so.
 ///

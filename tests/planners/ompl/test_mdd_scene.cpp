@@ -383,5 +383,23 @@ TEST(WorldUpdates, OtherPairsKeepTheirWarmStarts) {
   EXPECT_GT(filled, 0);  // the queries did warm some pairs
 }
 
+TEST(WorldUpdates, BadUpdatesAreRefusedAndLeaveTheSceneAsItWas) {
+  const examples::ExampleScene& scene = testing::allScenes()[0];  // primitives
+  MddScene mdd(scene.robot, scene.world);
+  const int n = static_cast<int>(scene.world->pieces().size());
+  mdd.removeWorldPiece(3);
+  EXPECT_THROW(mdd.removeWorldPiece(3), InvalidInputError);      // removed
+  EXPECT_THROW(mdd.removeWorldPiece(n + 5), InvalidInputError);  // never given
+  Eigen::Isometry3d nan = Eigen::Isometry3d::Identity();
+  nan.translation().y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(mdd.moveWorldPiece(4, nan), InvalidInputError);
+  EXPECT_THROW(mdd.moveWorldPiece(-1, Eigen::Isometry3d::Identity()), InvalidInputError);
+  ASSERT_EQ(static_cast<int>(mdd.world().pieces().size()), n - 1);
+  const MddScene rebuilt(scene.robot, std::make_shared<scene::World>(mdd.world().pieces(), "rebuilt"));
+  testing::Rng rng(testing::seed() * 13);
+  UpdateStats stats;
+  expectSameAnswers(scene, mdd, rebuilt, 100, rng, &stats, "after refused updates");
+}
+
 }  // namespace
 }  // namespace mddual::planning

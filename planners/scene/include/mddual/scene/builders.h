@@ -6,8 +6,11 @@
 // with LoadOptions::mesh_convex_hull), the same degenerate-triangle rules and
 // warnings; boxes, cylinders and spheres are boxPiece, cylinderPiece and
 // spherePiece with LoadOptions::primitive_tolerance. So a mesh written to a
-// file and loaded gives the pieces these builders give for its arrays (up to
-// the loader's 32-bit float storage of coordinates, and Piece::origin).
+// file and loaded gives the pieces these builders give for its arrays, up to
+// the loader's 32-bit float storage of coordinates, Piece::origin, and the
+// shift of recentring: the mean of the array's rows here, the mean of the
+// vertices assimp keeps for a file (which may repeat a corner once per face
+// normal).
 //
 // Frames: every shape is posed at X_OS in its owner's frame O (the body frame
 // R of a robot, the world frame W of a world).

@@ -112,16 +112,90 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
     e.pieces = std::make_unique<std::optional<scene::Piece>[]>(n);
     enlarged_.push_back(std::move(e));
   }
-  const auto tree = [](const std::vector<scene::Piece>& pieces) {
-    std::vector<const ConvexPolytope*> polytopes;
-    polytopes.reserve(pieces.size());
-    for (const scene::Piece& p : pieces) polytopes.push_back(&p.polytope);
-    // No node hulls: on the trap scene (benchmarks) their lower bounds did
-    // not pay for their core queries in translation sweeps.
-    return Bvh::fromPolytopes(polytopes);
-  };
-  robot_tree_ = tree(robot_->pieces());
-  world_tree_ = tree(world_->pieces());
+  std::vector<const ConvexPolytope*> polytopes;
+  for (const scene::Piece& p : robot_->pieces()) polytopes.push_back(&p.polytope);
+  robot_tree_ = Bvh::fromPolytopes(polytopes);
+  buildWorldTrees();
+  world_rebuilds_ = 0;
+}
+
+void MddScene::buildWorldTrees() {
+  // No node hulls: on the trap scene (benchmarks) their lower bounds did not
+  // pay for their core queries in translation sweeps.
+  const std::vector<scene::Piece>& pieces = world_->pieces();
+  std::vector<const ConvexPolytope*> polytopes;
+  polytopes.reserve(pieces.size());
+  static_ids_.clear();
+  in_static_.assign(static_cast<std::size_t>(world_->idLimit()), 0);
+  for (std::size_t j = 0; j < pieces.size(); ++j) {
+    polytopes.push_back(&pieces[j].polytope);
+    const int id = world_->idOf(static_cast<int>(j));
+    static_ids_.push_back(id);
+    in_static_[static_cast<std::size_t>(id)] = 1;
+  }
+  world_tree_ = Bvh::fromPolytopes(polytopes);
+  overflow_tree_ = Bvh();
+  overflow_ids_.clear();
+  stale_ = 0;
+  ++world_rebuilds_;
+}
+
+void MddScene::refreshWorldTrees() {
+  const int n = static_cast<int>(world_->pieces().size());
+  if (static_cast<int>(overflow_ids_.size()) + stale_ > scene::World::overflowLimit(n)) {
+    buildWorldTrees();
+    return;
+  }
+  std::vector<const ConvexPolytope*> polytopes;
+  polytopes.reserve(overflow_ids_.size());
+  for (const int id : overflow_ids_)
+    polytopes.push_back(&world_->pieces()[static_cast<std::size_t>(world_->indexOf(id))].polytope);
+  overflow_tree_ = Bvh::fromPolytopes(polytopes);
+}
+
+scene::World& MddScene::mutableWorld() {
+  if (!own_world_) {
+    own_world_ = std::make_shared<scene::World>(*world_);
+    world_ = own_world_;
+  }
+  return *own_world_;
+}
+
+int MddScene::addWorldPiece(scene::Piece piece) {
+  const int id = mutableWorld().addPiece(std::move(piece));
+  in_static_.resize(static_cast<std::size_t>(world_->idLimit()), 0);
+  overflow_ids_.push_back(id);
+  refreshWorldTrees();
+  return id;
+}
+
+void MddScene::removeWorldPiece(int id) {
+  mutableWorld().removePiece(id);  // throws for an unknown id, before any change here
+  if (in_static_[static_cast<std::size_t>(id)]) {
+    in_static_[static_cast<std::size_t>(id)] = 0;
+    ++stale_;
+  } else {
+    overflow_ids_.erase(std::find(overflow_ids_.begin(), overflow_ids_.end(), id));
+  }
+  refreshWorldTrees();
+}
+
+void MddScene::moveWorldPiece(int id, const Eigen::Isometry3d& X_WP) {
+  mutableWorld().movePiece(id, X_WP);
+  if (in_static_[static_cast<std::size_t>(id)]) {
+    in_static_[static_cast<std::size_t>(id)] = 0;
+    ++stale_;
+    overflow_ids_.push_back(id);
+  }
+  refreshWorldTrees();
+}
+
+int MddScene::worldIndex(int t, int k) const {
+  if (t == 0) {
+    const int id = static_ids_[static_cast<std::size_t>(k)];
+    return in_static_[static_cast<std::size_t>(id)] ? world_->indexOf(id) : -1;
+  }
+  return world_->indexOf(overflow_ids_[static_cast<std::size_t>(k)]);
 }
 
 double MddScene::setMargin(int set) const {
@@ -156,12 +230,12 @@ std::shared_ptr<MddScene::WarmTable> MddScene::warmTable() const {
 WarmStart* MddScene::warmStart(int set, int robot_piece, int world_piece) const {
   // The table outlives this call: PerThread keeps it until this thread uses
   // kSlots other scenes; callers use the pointer within one query.
-  return warmIn(*warmTable(), set, robot_piece, world_piece);
+  return warmIn(*warmTable(), set, robot_piece, world_->idOf(world_piece));
 }
 
-WarmStart* MddScene::warmIn(WarmTable& table, int set, int robot_piece, int world_piece) {
+WarmStart* MddScene::warmIn(WarmTable& table, int set, int robot_piece, int world_id) {
   if (table.map.size() > kMaxWarmPairs) table.map.clear();
-  return &table.map[pairKey(set, robot_piece, world_piece)];
+  return &table.map[pairKey(set, robot_piece, world_id)];
 }
 
 bool MddScene::collides(const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const {
@@ -173,21 +247,26 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
   const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
   int queries = 0;
   bool hit = false;
-  forEachOverlappingPair(world_tree_, robot_tree_, X_WR, setMargin(set), [&](int j, int i) {
-    IntersectInput in;
-    in.a = &world[static_cast<std::size_t>(j)].polytope;
-    in.b = &setPiece(set, i).polytope;
-    in.X_WB = X_WR;
-    ++queries;
-    if (!intersect(in, warmIn(*table, set, i, j)).intersecting) return true;
-    if (which) {
-      *which = PieceContact();
-      which->robot_piece = i;
-      which->world_piece = j;
-    }
-    hit = true;
-    return false;
-  });
+  for (int t = 0; t < 2 && !hit; ++t) {
+    if (worldTreeAt(t).empty()) continue;
+    forEachOverlappingPair(worldTreeAt(t), robot_tree_, X_WR, setMargin(set), [&](int k, int i) {
+      const int j = worldIndex(t, k);
+      if (j < 0) return true;  // a removed or moved piece's old leaf
+      IntersectInput in;
+      in.a = &world[static_cast<std::size_t>(j)].polytope;
+      in.b = &setPiece(set, i).polytope;
+      in.X_WB = X_WR;
+      ++queries;
+      if (!intersect(in, warmIn(*table, set, i, world_->idOf(j))).intersecting) return true;
+      if (which) {
+        *which = PieceContact();
+        which->robot_piece = i;
+        which->world_piece = j;
+      }
+      hit = true;
+      return false;
+    });
+  }
   if (pair_queries) *pair_queries += queries;
   return hit;
 }
@@ -236,7 +315,10 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   options.first_contact = first_contact;
   // The cast keeps the smallest distance the leaf returns; the contact of
   // that pair is recorded here (same rule: strictly smaller than the best).
-  const auto leaf = [&](int j, int i, double limit) {
+  int tree = 0;
+  const auto leaf = [&](int k, int i, double limit) {
+    const int j = worldIndex(tree, k);
+    if (j < 0) return kInf;  // a removed or moved piece's old leaf
     DirectionalInput in;
     in.a = &world[static_cast<std::size_t>(j)].polytope;
     in.b = &setPiece(set, i).polytope;
@@ -245,7 +327,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
     in.max_distance = limit;
     in.exact_toi = first_contact;  // a yes/no sweep may stop at the first proof of a hit
     ++result.pair_queries;
-    const ToiResult r = toi(in, warmIn(*table, set, i, j));
+    const ToiResult r = toi(in, warmIn(*table, set, i, world_->idOf(j)));
     if (r.status == ToiStatus::kNever || !(r.toi <= limit) || !(r.toi < result.distance)) return kInf;
     result.contact = PieceContact();
     result.contact.robot_piece = i;
@@ -260,7 +342,16 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
     result.contact.n_W = r.contact.normal_W;
     return r.toi;
   };
-  castFirst(world_tree_, robot_tree_, X_WR, u, max_distance, leaf, options);
+  // One cast per world tree; the second only looks for contacts before the
+  // first's (the best so far), and none is needed after any contact when
+  // first_contact is false or after a start in contact.
+  double limit = max_distance;
+  for (tree = 0; tree < 2; ++tree) {
+    if (worldTreeAt(tree).empty()) continue;
+    castFirst(worldTreeAt(tree), robot_tree_, X_WR, u, limit, leaf, options);
+    if (result.start_collides || (!first_contact && result.distance < kInf)) break;
+    limit = std::min(limit, result.distance);
+  }
   return result;
 }
 

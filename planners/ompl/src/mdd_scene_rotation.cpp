@@ -38,7 +38,9 @@ struct Interval {
 
 struct Triple {
   double bound;  ///< lower bound of the first contact fraction of any pair in it
-  int robot, world, interval;
+  int robot;     ///< robot node
+  int world;     ///< world node, with its tree: 2 * node + tree (0: static, 1: overflow)
+  int interval;
 };
 
 struct Scratch {
@@ -53,8 +55,13 @@ bool later(const Triple& a, const Triple& b) {
 }  // namespace
 
 void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeContact* out) const {
-  if (world_tree_.empty()) return;
+  if (world_tree_.empty() && overflow_tree_.empty()) return;
   const std::vector<scene::Piece>& world = world_->pieces();
+  // World nodes of both trees, encoded as in Triple::world.
+  const auto worldNode = [this](int wn) -> const Bvh::Node& { return worldTreeAt(wn & 1).node(wn >> 1); };
+  const auto worldChild = [](int wn, int child) { return 2 * child + (wn & 1); };
+  // The world index of a world leaf, -1 for a removed or moved piece's old leaf.
+  const auto worldLeaf = [this](int wn) { return worldIndex(wn & 1, worldTreeAt(wn & 1).leafPiece(wn >> 1)); };
   const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
   thread_local Scratch scratch;                          // this function only: no reentrancy
   std::vector<Interval>& intervals = scratch.intervals;
@@ -89,7 +96,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
   const auto bound = [&](int rn, int wn, const Interval& I) {
     ++out->sub_edges;
     const Bvh::Node& N = robot_tree_.node(rn);
-    const Bvh::Node& M = world_tree_.node(wn);
+    const Bvh::Node& M = worldNode(wn);
     const double e = growth(N, I);
     const Eigen::Vector3d c_W = I.X_WM * N.centre;
     const double r = N.radius + e;
@@ -107,6 +114,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
   double best = kInf;  // smallest finest-level contact fraction found
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
+    if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
     const double b = bound(rn, wn, intervals[static_cast<std::size_t>(iv)]);
     if (b < best) {
       heap.push_back(Triple{b, rn, wn, iv});
@@ -139,7 +147,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     out_leaf.contact.world_piece = j;
     const ConvexPolytope& enlarged = enlargedPiece(level, i).polytope;
     const ConvexPolytope& obstacle = world[static_cast<std::size_t>(j)].polytope;
-    WarmStart* warm = warmIn(*table, level + 1, i, j);
+    WarmStart* warm = warmIn(*table, level + 1, i, world_->idOf(j));
     ++out->pair_queries;
     if (I.length > 0.0) {
       DirectionalInput in;
@@ -173,7 +181,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     in.b = &robot_->pieces()[static_cast<std::size_t>(i)].polytope;
     in.X_WB = motion.pose(t);
     ++out->pair_queries;
-    return intersect(in, warmIn(*table, 0, i, j)).intersecting;
+    return intersect(in, warmIn(*table, 0, i, world_->idOf(j))).intersecting;
   };
   // Validity only: a pair refuted at a coarse level is refined depth first
   // (halving its interval) until it is free, a finest-level query refutes it,
@@ -182,7 +190,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
   thread_local std::vector<int> stack;  // intervals still to check for this pair
   const auto refineDepthFirst = [&](int rn, int wn, int iv) {
     const int i = robot_tree_.leafPiece(rn);
-    const int j = world_tree_.leafPiece(wn);
+    const int j = worldLeaf(wn);
     stack.clear();
     stack.push_back(iv);
     while (!stack.empty()) {
@@ -205,7 +213,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     return false;
   };
 
-  push(robot_tree_.root(), world_tree_.root(), makeInterval(0.0, 1.0));
+  const int whole = makeInterval(0.0, 1.0);
+  for (int tree = 0; tree < 2; ++tree) {
+    if (!worldTreeAt(tree).empty()) push(robot_tree_.root(), 2 * worldTreeAt(tree).root() + tree, whole);
+  }
   // First contact: a queue by bound (see the header). Validity only: any
   // order is sound; a stack (depth first) is cheaper and reaches leaves soon.
   while (!heap.empty()) {
@@ -214,7 +225,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     heap.pop_back();
     if (t.bound >= best) break;  // every triple left starts no earlier
     const Bvh::Node& N = robot_tree_.node(t.robot);
-    const Bvh::Node& M = world_tree_.node(t.world);
+    const Bvh::Node& M = worldNode(t.world);
     const Interval I = intervals[static_cast<std::size_t>(t.interval)];  // a copy: intervals may grow
     const double e = growth(N, I);
     if (!N.isLeaf() || !M.isLeaf()) {
@@ -239,8 +250,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
         push(N.left, t.world, t.interval);
         push(N.right, t.world, t.interval);
       } else {
-        push(t.robot, M.left, t.interval);
-        push(t.robot, M.right, t.interval);
+        push(t.robot, worldChild(t.world, M.left), t.interval);
+        push(t.robot, worldChild(t.world, M.right), t.interval);
       }
       continue;
     }
@@ -249,7 +260,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
       continue;
     }
     const int i = robot_tree_.leafPiece(t.robot);
-    const int j = world_tree_.leafPiece(t.world);
+    const int j = worldLeaf(t.world);
+    if (j < 0) continue;  // the piece is not in the world
     const LeafResult r = leafQuery(i, j, I, e);
     if (!r.hit) continue;
     if (r.finest) {

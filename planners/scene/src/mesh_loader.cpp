@@ -467,7 +467,12 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
                                         const std::string& origin_prefix, MeshInfo* info) {
   if (!scale.allFinite()) throw SceneError(display(file) + ": the mesh scale has a non-finite entry");
   if (!X_OM.matrix().allFinite()) throw SceneError(display(file) + ": the mesh pose has a non-finite entry");
-  MeshData data = readMesh(file);
+  return meshDataPieces(readMesh(file), file, scale, X_OM, options, origin_prefix, info);
+}
+
+std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::path& file, const Eigen::Vector3d& scale,
+                                  const Eigen::Isometry3d& X_OM, const LoadOptions& options,
+                                  const std::string& origin_prefix, MeshInfo* info) {
   MeshInfo local;
   MeshInfo& out = info != nullptr ? *info : local;
   out = MeshInfo{};

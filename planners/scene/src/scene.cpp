@@ -1,6 +1,7 @@
 #include "mddual/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 namespace mddual::scene {
@@ -9,6 +10,9 @@ namespace {
 /// Leaves hold at most this many boxes (a few boxes are cheaper to scan than
 /// to descend into).
 constexpr int kLeafSize = 4;
+/// Smallest overflow (plus stale tree entries) that triggers a rebuild:
+/// scanning a few boxes costs less than rebuilding a small tree.
+constexpr int kMinOverflow = 16;
 
 }  // namespace
 
@@ -90,14 +94,152 @@ RigidBody::RigidBody(std::vector<Piece> pieces, std::string name) : pieces_(std:
 }
 
 World::World(std::vector<Piece> pieces, std::string name) : pieces_(std::move(pieces)), name_(std::move(name)) {
+  id_of_.resize(pieces_.size());
+  std::iota(id_of_.begin(), id_of_.end(), 0);
+  index_of_ = id_of_;
+  in_tree_.assign(pieces_.size(), 1);
+  rebuild();
+  rebuilds_ = 0;
+}
+
+int World::overflowLimit(int n) {
+  return std::max(kMinOverflow, static_cast<int>(2.0 * std::sqrt(static_cast<double>(n))));
+}
+
+void World::recomputeBox() {
   box_.setEmpty();
+  for (const Piece& p : pieces_) box_.extend(p.box);
+}
+
+void World::rebuild() {
   std::vector<Eigen::AlignedBox3d> boxes;
   boxes.reserve(pieces_.size());
-  for (const Piece& p : pieces_) {
-    box_.extend(p.box);
-    boxes.push_back(p.box);
-  }
+  tree_ids_ = id_of_;
+  for (const Piece& p : pieces_) boxes.push_back(p.box);
+  for (const int id : id_of_) in_tree_[static_cast<std::size_t>(id)] = 1;
   tree_ = AabbTree(boxes);
+  overflow_.clear();
+  stale_ = 0;
+  ++rebuilds_;
+  recomputeBox();
+}
+
+void World::maybeRebuild() {
+  if (static_cast<int>(overflow_.size()) + stale_ > overflowLimit(static_cast<int>(pieces_.size()))) {
+    rebuild();
+  } else {
+    recomputeBox();
+  }
+}
+
+void World::candidates(const Eigen::AlignedBox3d& query_W, std::vector<int>* out) const {
+  const std::size_t first = out->size();
+  tree_.query(query_W, out);
+  std::size_t kept = first;
+  for (std::size_t k = first; k < out->size(); ++k) {
+    const int id = tree_ids_[static_cast<std::size_t>((*out)[k])];
+    if (!in_tree_[static_cast<std::size_t>(id)]) continue;  // removed, or moved into the overflow
+    (*out)[kept++] = index_of_[static_cast<std::size_t>(id)];
+  }
+  out->resize(kept);
+  if (query_W.isEmpty()) return;
+  for (const int id : overflow_) {
+    const int index = index_of_[static_cast<std::size_t>(id)];
+    if (pieces_[static_cast<std::size_t>(index)].box.intersects(query_W)) out->push_back(index);
+  }
+}
+
+bool World::hasPiece(int id) const {
+  return id >= 0 && id < idLimit() && index_of_[static_cast<std::size_t>(id)] >= 0;
+}
+
+int World::requireId(int id, const char* what) const {
+  if (!hasPiece(id)) {
+    throw InvalidInputError("World '" + name_ + "': " + what + ": no piece with id " + std::to_string(id) +
+                            (id >= 0 && id < idLimit() ? " (it was removed)" : ""));
+  }
+  return index_of_[static_cast<std::size_t>(id)];
+}
+
+int World::indexOf(int id) const {
+  return requireId(id, "indexOf");
+}
+
+Eigen::Isometry3d World::piecePose(int id) const {
+  requireId(id, "piecePose");
+  const auto it = moved_.find(id);
+  return it == moved_.end() ? Eigen::Isometry3d::Identity() : it->second.X_WP;
+}
+
+int World::addPiece(Piece piece) {
+  const int id = idLimit();
+  const int index = static_cast<int>(pieces_.size());
+  pieces_.push_back(std::move(piece));
+  id_of_.push_back(id);
+  index_of_.push_back(index);
+  in_tree_.push_back(0);
+  overflow_.push_back(id);
+  maybeRebuild();
+  return id;
+}
+
+void World::removePiece(int id) {
+  const int index = requireId(id, "removePiece");
+  const int last = static_cast<int>(pieces_.size()) - 1;
+  if (index != last) {
+    const int last_id = id_of_[static_cast<std::size_t>(last)];
+    pieces_[static_cast<std::size_t>(index)] = std::move(pieces_.back());
+    id_of_[static_cast<std::size_t>(index)] = last_id;
+    index_of_[static_cast<std::size_t>(last_id)] = index;
+  }
+  pieces_.pop_back();
+  id_of_.pop_back();
+  index_of_[static_cast<std::size_t>(id)] = -1;
+  if (in_tree_[static_cast<std::size_t>(id)]) {
+    in_tree_[static_cast<std::size_t>(id)] = 0;
+    ++stale_;
+  } else {
+    overflow_.erase(std::find(overflow_.begin(), overflow_.end(), id));
+  }
+  moved_.erase(id);
+  maybeRebuild();
+}
+
+void World::movePiece(int id, const Eigen::Isometry3d& X_WP) {
+  const int index = requireId(id, "movePiece");
+  if (!X_WP.matrix().allFinite()) {
+    throw InvalidInputError("World '" + name_ + "': movePiece: the pose of piece " + std::to_string(id) +
+                            " has a non-finite entry");
+  }
+  Piece& piece = pieces_[static_cast<std::size_t>(index)];
+  const auto it = moved_.find(id);
+  const ConvexPolytope& reference = it == moved_.end() ? piece.polytope : it->second.reference;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(reference.vertices().size());
+  for (const Eigen::Vector3d& v : reference.vertices()) points.push_back(X_WP * v);
+  Piece moved;
+  try {
+    moved = Piece::make(ConvexPolytope::fromPoints(points), piece.kind, piece.origin);
+  } catch (const Error& e) {
+    throw SceneError("World '" + name_ + "': movePiece: piece " + std::to_string(id) + " (" + piece.origin +
+                     "): cannot build the moved polytope: " + e.what());
+  }
+  // Committed from here on (nothing below throws but allocation).
+  if (it == moved_.end()) {
+    Moved m;
+    m.reference = std::move(piece.polytope);
+    m.X_WP = X_WP;
+    moved_.emplace(id, std::move(m));
+  } else {
+    it->second.X_WP = X_WP;
+  }
+  piece = std::move(moved);
+  if (in_tree_[static_cast<std::size_t>(id)]) {
+    in_tree_[static_cast<std::size_t>(id)] = 0;
+    ++stale_;
+    overflow_.push_back(id);
+  }
+  maybeRebuild();
 }
 
 Eigen::AlignedBox3d transformedBox(const Eigen::AlignedBox3d& box, const Eigen::Isometry3d& X_WF) {

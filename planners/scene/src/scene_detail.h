@@ -94,6 +94,15 @@ struct ConvexityCheck {
 ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull,
                               bool oriented = false);
 
+/// The pieces of mesh data already read (meshPiecesWithOrigin after
+/// readMesh; the in-memory builders of builders.h): every check and the
+/// convexity handling of meshPieces. `file` only names the source in messages
+/// (a file, or a label for in-memory arrays). The data's vertices must be
+/// finite (readMesh and the builders check them).
+std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::path& file, const Eigen::Vector3d& scale,
+                                  const Eigen::Isometry3d& X_OM, const LoadOptions& options,
+                                  const std::string& origin_prefix, MeshInfo* info);
+
 /// meshPieces with the pieces' origins prefixed by `origin_prefix`
 /// ("<prefix>: triangle 3").
 std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const Eigen::Vector3d& scale,

@@ -2,9 +2,12 @@
 // replace (every robot piece, the world pieces whose boxes meet its box, one
 // core query per pair), on every test scene and the trap: state checks,
 // translation sweeps (first contacts and yes/no answers) and the same on the
-// enlarged piece sets; and the rotating-edge scheme's bookkeeping.
+// enlarged piece sets; the rotating-edge scheme's bookkeeping; and worlds
+// that change (answers after random updates against a scene rebuilt from
+// scratch, warm starts kept).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -184,6 +187,217 @@ TEST(MddSceneRotation, TheTreesCoverTheirPieces) {
   for (int n = 0; n < mdd.robotTree().numNodes(); ++n) {
     EXPECT_LE(mdd.robotTree().node(n).max_norm, scene.robot->radius() * (1.0 + 1e-9));
   }
+}
+
+// ---- Worlds that change ---------------------------------------------------------
+
+/// A random rigid motion about `centre`: a rotation (about z for the planar
+/// kinds) and a shift of up to `reach` (none along z for the planar kinds).
+Eigen::Isometry3d randomMotionAbout(const examples::ExampleScene& scene, const Eigen::Vector3d& centre, double reach,
+                                    testing::Rng& rng) {
+  const bool planar = scene.kind == SpaceKind::kSE2 || scene.kind == SpaceKind::kR2;
+  Eigen::Vector3d shift = reach * generators::randomUnitVector(rng);
+  Eigen::Matrix3d R = generators::randomRotation(rng);
+  if (planar) {
+    shift.z() = 0.0;
+    R = Eigen::AngleAxisd(std::uniform_real_distribution<double>(-kPi, kPi)(rng), Eigen::Vector3d::UnitZ())
+            .toRotationMatrix();
+  }
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = R;
+  X.translation() = centre + shift - R * centre;
+  return X;
+}
+
+/// A random edge from X: a translation of up to `reach` and, when `rotate`,
+/// a rotation of up to pi about a random axis (z for the planar kinds).
+EdgeMotion randomEdge(const examples::ExampleScene& scene, const Eigen::Isometry3d& X, double reach, bool rotate,
+                      testing::Rng& rng) {
+  const bool planar = scene.kind == SpaceKind::kSE2 || scene.kind == SpaceKind::kR2;
+  EdgeMotion m;
+  m.p_start = X.translation();
+  m.q_start = Eigen::Quaterniond(X.linear());
+  m.R_start = X.linear();
+  Eigen::Vector3d v = generators::randomUnitVector(rng);
+  if (planar) v.z() = 0.0;
+  m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, reach)(rng) * v;
+  if (rotate) {
+    m.axis_R = planar ? Eigen::Vector3d::UnitZ() : generators::randomUnitVector(rng);
+    m.angle = std::uniform_real_distribution<double>(0.0, kPi)(rng);
+  }
+  m.X_end = m.pose(1.0);
+  return m;
+}
+
+/// Counts of the comparisons.
+struct UpdateStats {
+  int states = 0, colliding = 0, sweeps = 0, sweep_hits = 0, edges = 0, edge_hits = 0, rotating = 0, rotating_hits = 0;
+};
+
+/// Every answer of `updated` against `rebuilt` (same robot, same pieces in
+/// the same order, trees built from scratch) on random queries.
+void expectSameAnswers(const examples::ExampleScene& scene, const MddScene& updated, const MddScene& rebuilt,
+                       int queries, testing::Rng& rng, UpdateStats* stats, const std::string& where) {
+  const double extent = (scene.bounds.max() - scene.bounds.min()).norm();
+  for (int k = 0; k < queries; ++k) {
+    const Eigen::Isometry3d X = randomPose(scene, rng);
+    const bool hit = rebuilt.collides(X);
+    ASSERT_EQ(updated.collides(X), hit) << where << " state " << k;
+    ++stats->states;
+    stats->colliding += hit;
+
+    Eigen::Vector3d v = 0.3 * extent * generators::randomUnitVector(rng);
+    if (scene.kind == SpaceKind::kSE2 || scene.kind == SpaceKind::kR2) v.z() = 0.0;
+    const SweepResult sa = updated.sweep(X, v, true);
+    const SweepResult sb = rebuilt.sweep(X, v, true);
+    ASSERT_EQ(sa.start_collides, sb.start_collides) << where << " sweep " << k;
+    ASSERT_EQ(std::isfinite(sa.distance), std::isfinite(sb.distance)) << where << " sweep " << k;
+    if (std::isfinite(sb.distance)) {
+      EXPECT_NEAR(sa.distance, sb.distance, 1e-12 * (1.0 + v.norm())) << where << " sweep " << k;
+      ++stats->sweep_hits;
+    }
+    // Any contact (not necessarily the first, nor the same one): whether there is one.
+    const SweepResult any = updated.sweep(X, v, false);
+    EXPECT_EQ(any.start_collides || std::isfinite(any.distance), std::isfinite(sb.distance)) << where << " sweep " << k;
+    ++stats->sweeps;
+
+    // Edges: translation (exact fraction) and rotating (a lower bound).
+    for (const bool rotate : {false, true}) {
+      if (rotate && k % 2 != 0) continue;  // rotating edges cost more: every second query
+      const EdgeMotion m = randomEdge(scene, X, 0.2 * extent, rotate, rng);
+      const EdgeContact a = updated.checkEdge(m, true);
+      const EdgeContact b = rebuilt.checkEdge(m, true);
+      ASSERT_EQ(a.collides, b.collides) << where << (rotate ? " rotating" : " translation") << " edge " << k;
+      ASSERT_EQ(a.start_collides, b.start_collides) << where << " edge " << k;
+      EXPECT_EQ(updated.checkEdge(m, false).collides, a.collides) << where << " edge " << k;
+      if (!rotate && b.collides) {
+        EXPECT_NEAR(a.fraction, b.fraction, 1e-12) << where << " edge " << k;
+      }
+      if (rotate && b.collides) {
+        // Both fractions are lower bounds of the first colliding state
+        // (sampled), found with different trees.
+        for (int s = 0; s <= 200; ++s) {
+          if (!rebuilt.collides(m.pose(s / 200.0))) continue;
+          EXPECT_LE(a.fraction, s / 200.0) << where << " rotating edge " << k;
+          break;
+        }
+      }
+      ++(rotate ? stats->rotating : stats->edges);
+      if (b.collides) ++(rotate ? stats->rotating_hits : stats->edge_hits);
+    }
+  }
+}
+
+class WorldUpdates : public ::testing::TestWithParam<int> {};
+
+TEST_P(WorldUpdates, EveryAnswerEqualsThatOfAWorldRebuiltFromScratch) {
+  const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(GetParam())];
+  auto mdd = std::make_shared<MddScene>(scene.robot, scene.world);
+  const std::size_t given = scene.world->pieces().size();
+  testing::Rng rng(testing::seed() * 53 + static_cast<std::uint64_t>(GetParam()));
+  const double extent = (scene.bounds.max() - scene.bounds.min()).norm();
+  std::vector<int> live;  // ids of the current pieces
+  for (int j = 0; j < static_cast<int>(given); ++j) live.push_back(j);
+  UpdateStats stats;
+  int adds = 0, removes = 0, moves = 0;
+  for (int round = 0; round < 8; ++round) {
+    for (int step = 0; step < 12; ++step) {
+      const int op = std::uniform_int_distribution<int>(0, 2)(rng);
+      const std::size_t pick = std::uniform_int_distribution<std::size_t>(0, live.size() - 1)(rng);
+      if (op == 0 || live.size() < given / 2) {
+        // A copy of one of the scene's pieces, somewhere else in the bounds.
+        const scene::Piece& model =
+            scene.world->pieces()[std::uniform_int_distribution<std::size_t>(0, given - 1)(rng)];
+        const Eigen::Isometry3d X = randomMotionAbout(scene, model.centre, 0.3 * extent, rng);
+        std::vector<Eigen::Vector3d> points;
+        for (const Eigen::Vector3d& p : model.polytope.vertices()) points.push_back(X * p);
+        live.push_back(mdd->addWorldPiece(
+            scene::Piece::make(ConvexPolytope::fromPoints(points), model.kind, "added " + std::to_string(adds))));
+        ++adds;
+      } else if (op == 1) {
+        mdd->removeWorldPiece(live[pick]);
+        live.erase(live.begin() + static_cast<std::ptrdiff_t>(pick));
+        ++removes;
+      } else {
+        const scene::Piece& piece = mdd->world().pieces()[static_cast<std::size_t>(mdd->world().indexOf(live[pick]))];
+        mdd->moveWorldPiece(live[pick], randomMotionAbout(scene, piece.centre, 0.1 * extent, rng));
+        ++moves;
+      }
+    }
+    ASSERT_EQ(mdd->world().pieces().size(), live.size());
+    const auto rebuilt_world = std::make_shared<scene::World>(mdd->world().pieces(), "rebuilt");
+    const MddScene rebuilt(scene.robot, rebuilt_world);
+    expectSameAnswers(scene, *mdd, rebuilt, 100 * testing::scale(), rng, &stats,
+                      scene.name + " round " + std::to_string(round));
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_EQ(scene.world->pieces().size(), given);  // the World given to the scene is never modified
+  EXPECT_GT(mdd->worldTreeRebuilds(), 0);          // the static tree was rebuilt at least once
+  std::printf(
+      "%-10s %d adds, %d removes, %d moves, %d tree rebuilds; %d states (%d colliding), %d sweeps (%d hits), "
+      "%d translation edges (%d colliding), %d rotating edges (%d colliding)\n",
+      scene.name.c_str(), adds, removes, moves, mdd->worldTreeRebuilds(), stats.states, stats.colliding, stats.sweeps,
+      stats.sweep_hits, stats.edges, stats.edge_hits, stats.rotating, stats.rotating_hits);
+  EXPECT_GT(stats.colliding, 0);
+  EXPECT_LT(stats.colliding, stats.states);
+  EXPECT_GT(stats.edge_hits, 0);
+  EXPECT_GT(stats.rotating_hits, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(CodeScenes, WorldUpdates, ::testing::Range(0, 4), sceneName);
+
+TEST(WorldUpdates, OtherPairsKeepTheirWarmStarts) {
+  const examples::ExampleScene& scene = testing::allScenes()[3];  // blobs
+  MddScene mdd(scene.robot, scene.world);
+  // Fill the warm starts of every pair with a state query at each of a few poses.
+  testing::Rng rng(testing::seed() * 7);
+  const double extent = (scene.bounds.max() - scene.bounds.min()).norm();
+  for (int k = 0; k < 100; ++k) {
+    const Eigen::Isometry3d X = randomPose(scene, rng);
+    mdd.collides(X);
+    mdd.sweep(X, extent * generators::randomUnitVector(rng));
+  }
+  const auto snapshot = [&](int world_id) {
+    const WarmStart* w = mdd.warmStart(0, 0, mdd.world().indexOf(world_id));
+    return std::vector<int>{w->centre_a[0],  w->centre_a[1],  w->centre_b[0],  w->centre_b[1],
+                            w->overlap_a[0], w->overlap_b[0], w->separating.a, w->separating.b};
+  };
+  const int n = static_cast<int>(scene.world->pieces().size());
+  std::vector<std::vector<int>> before;
+  for (int id = 0; id < n; ++id) before.push_back(snapshot(id));
+  // Remove the first piece (the last one takes its index), move the second,
+  // add one: every other pair's warm start is the one it had.
+  mdd.removeWorldPiece(0);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() << 0.5, 0, 0;
+  mdd.moveWorldPiece(1, X);
+  mdd.addWorldPiece(scene.world->pieces()[2]);
+  EXPECT_EQ(mdd.world().indexOf(n - 1), 0);
+  int filled = 0;
+  for (int id = 2; id < n; ++id) {
+    EXPECT_EQ(snapshot(id), before[static_cast<std::size_t>(id)]) << "world piece id " << id;
+    const std::vector<int>& w = before[static_cast<std::size_t>(id)];
+    filled += std::any_of(w.begin(), w.end(), [](int x) { return x >= 0; });
+  }
+  EXPECT_GT(filled, 0);  // the queries did warm some pairs
+}
+
+TEST(WorldUpdates, BadUpdatesAreRefusedAndLeaveTheSceneAsItWas) {
+  const examples::ExampleScene& scene = testing::allScenes()[0];  // primitives
+  MddScene mdd(scene.robot, scene.world);
+  const int n = static_cast<int>(scene.world->pieces().size());
+  mdd.removeWorldPiece(3);
+  EXPECT_THROW(mdd.removeWorldPiece(3), InvalidInputError);      // removed
+  EXPECT_THROW(mdd.removeWorldPiece(n + 5), InvalidInputError);  // never given
+  Eigen::Isometry3d nan = Eigen::Isometry3d::Identity();
+  nan.translation().y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(mdd.moveWorldPiece(4, nan), InvalidInputError);
+  EXPECT_THROW(mdd.moveWorldPiece(-1, Eigen::Isometry3d::Identity()), InvalidInputError);
+  ASSERT_EQ(static_cast<int>(mdd.world().pieces().size()), n - 1);
+  const MddScene rebuilt(scene.robot, std::make_shared<scene::World>(mdd.world().pieces(), "rebuilt"));
+  testing::Rng rng(testing::seed() * 13);
+  UpdateStats stats;
+  expectSameAnswers(scene, mdd, rebuilt, 100, rng, &stats, "after refused updates");
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Concurrent use: the same checkers called from 8 threads at once give the
-// answers one thread gives, and the counters add up. CI runs this executable
+// answers one thread gives, and the counters add up; world updates made
+// between concurrent runs are seen by every thread. CI runs this executable
 // under ThreadSanitizer too (labels tsan / planning-tsan), so it stays small.
 #include <gtest/gtest.h>
 
@@ -214,6 +215,72 @@ TEST(UserSpaceThreads, CompoundSpaceSameAnswersFromEightThreads) {
     EXPECT_EQ(valids[t], valid) << "thread " << t;
     for (std::size_t i = 0; i < last.size(); ++i) EXPECT_NEAR(lasts[t][i], last[i], 1e-12) << "thread " << t;
   }
+}
+
+/// The MDD answers of a and b (not FCL's, whose scene is not updated).
+void expectSameMdd(const Answers& a, const Answers& b, int thread) {
+  EXPECT_EQ(a.mdd_state, b.mdd_state) << "thread " << thread;
+  EXPECT_EQ(a.motion, b.motion) << "thread " << thread;
+  for (std::size_t i = 0; i < a.last_valid.size(); ++i) {
+    EXPECT_NEAR(a.last_valid[i], b.last_valid[i], 1e-12) << "thread " << thread << " edge " << i;
+  }
+  EXPECT_EQ(a.separation, b.separation) << "thread " << thread;
+  for (std::size_t i = 0; i < a.clearance.size(); ++i) {
+    if (std::isinf(a.clearance[i])) {
+      EXPECT_EQ(a.clearance[i], b.clearance[i]) << "thread " << thread << " state " << i;
+    } else {
+      EXPECT_NEAR(a.clearance[i], b.clearance[i], 1e-9) << "thread " << thread << " state " << i;
+    }
+  }
+}
+
+TEST(ThreadsAndUpdates, UpdatesBetweenConcurrentRunsAreSeenByEveryThread) {
+  // Eight threads warm their caches on the scene; then, with no query
+  // running, pieces are removed, moved and added; then eight threads again:
+  // their answers are those of one thread on a scene built from the updated
+  // pieces.
+  const examples::ExampleScene scene = examples::planarScene(testing::seed(), 30);
+  const Fixture fx = testing::makeFixture(scene);
+  const FclContinuousMotionValidator ccd(fx.fcl_si, fx.space, fx.fcl);
+  const Workload w = makeWorkload(fx, 100 * testing::scale(), 40 * testing::scale(), testing::seed() + 9);
+  const auto concurrently = [&](std::vector<Answers>* answers) {
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+      threads.emplace_back(
+          [&, t] { (*answers)[static_cast<std::size_t>(t)] = run(fx, ccd, w, static_cast<std::size_t>(t) * 37); });
+    }
+    for (std::thread& th : threads) th.join();
+  };
+  std::vector<Answers> answers(kThreads);
+  concurrently(&answers);
+
+  for (int id = 0; id < 5; ++id) fx.mdd->removeWorldPiece(id);
+  for (int id = 5; id < 10; ++id) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() << 0.7, -0.4, 0.0;
+    fx.mdd->moveWorldPiece(id, X);
+  }
+  for (int k = 10; k < 15; ++k) {
+    scene::Piece piece = fx.mdd->world().pieces()[static_cast<std::size_t>(fx.mdd->world().indexOf(k))];
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() << -1.1, 0.9, 0.0;
+    std::vector<Eigen::Vector3d> points;
+    for (const Eigen::Vector3d& v : piece.polytope.vertices()) points.push_back(X * v);
+    fx.mdd->addWorldPiece(scene::Piece::make(ConvexPolytope::fromPoints(points), piece.kind, "copy"));
+  }
+  concurrently(&answers);
+
+  examples::ExampleScene rebuilt = scene;
+  rebuilt.world = std::make_shared<scene::World>(fx.mdd->world().pieces(), "rebuilt");
+  const Fixture fresh = testing::makeFixture(rebuilt);
+  const FclContinuousMotionValidator fresh_ccd(fresh.fcl_si, fresh.space, fresh.fcl);
+  const Answers reference = run(fresh, fresh_ccd, w, 0);
+  for (int t = 0; t < kThreads; ++t) expectSameMdd(reference, answers[static_cast<std::size_t>(t)], t);
+  int changed = 0;  // the updates changed some answers (else the test proves little)
+  Answers before_updates = run(testing::makeFixture(scene), ccd, w, 0);
+  for (std::size_t i = 0; i < w.states.size(); ++i) changed += before_updates.mdd_state[i] != reference.mdd_state[i];
+  for (std::size_t i = 0; i < w.edges.size(); ++i) changed += before_updates.motion[i] != reference.motion[i];
+  EXPECT_GT(changed, 0);
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
-// The scene model: AabbTree queries against a brute-force scan, and
-// transformedBox (contains the posed corners, and is tight).
+// The scene model: AabbTree queries against a brute-force scan,
+// transformedBox (contains the posed corners, and is tight), and worlds that
+// change (ids, indices, bounds and candidates after random updates).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 
+#include "mddual/scene/loaders.h"
 #include "mddual/scene/scene.h"
 
 namespace mddual::scene {
@@ -92,6 +95,133 @@ TEST(RigidBody, RejectsNoPiecesAndComputesBounds) {
   EXPECT_DOUBLE_EQ(body.radius(), std::sqrt(14.0));
   EXPECT_TRUE(body.box().min().isApprox(Eigen::Vector3d(0, 0, 0)));
   EXPECT_TRUE(body.box().max().isApprox(Eigen::Vector3d(1, 2, 3)));
+}
+
+// ---- Worlds that change ---------------------------------------------------------
+
+Eigen::Isometry3d randomPose(std::mt19937_64& rng, double extent) {
+  std::uniform_real_distribution<double> pos(-extent, extent);
+  std::uniform_real_distribution<double> angle(-3.0, 3.0);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() << pos(rng), pos(rng), pos(rng);
+  X.linear() = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d(pos(rng), pos(rng), 1.0).normalized()).toRotationMatrix();
+  return X;
+}
+
+Piece randomBoxPiece(std::mt19937_64& rng, const std::string& origin) {
+  std::uniform_real_distribution<double> size(0.1, 2.0);
+  return boxPiece(Eigen::Vector3d(size(rng), size(rng), size(rng)), randomPose(rng, 10.0), origin);
+}
+
+/// The indices whose boxes meet `query`, sorted.
+std::vector<int> bruteCandidates(const World& world, const Eigen::AlignedBox3d& query) {
+  std::vector<int> out;
+  for (int i = 0; i < static_cast<int>(world.pieces().size()); ++i) {
+    if (world.pieces()[static_cast<std::size_t>(i)].box.intersects(query)) out.push_back(i);
+  }
+  return out;
+}
+
+TEST(WorldUpdates, RandomAddsRemovesAndMovesKeepIdsBoundsAndCandidates) {
+  std::mt19937_64 rng(777);
+  std::vector<Piece> pieces;
+  for (int i = 0; i < 60; ++i) pieces.push_back(randomBoxPiece(rng, "box " + std::to_string(i)));
+  World world(pieces, "changing");
+  // What the test expects: id -> origin and pose of the live pieces, and the
+  // geometry each id had when added.
+  std::vector<std::string> origin_of;
+  std::vector<ConvexPolytope> added;
+  std::vector<bool> alive;
+  for (const Piece& p : pieces) {
+    origin_of.push_back(p.origin);
+    added.push_back(p.polytope);
+    alive.push_back(true);
+  }
+  int queries = 0, hits = 0;
+  for (int step = 0; step < 400; ++step) {
+    const int op = std::uniform_int_distribution<int>(0, 2)(rng);
+    std::vector<int> live;
+    for (int id = 0; id < static_cast<int>(alive.size()); ++id) {
+      if (alive[static_cast<std::size_t>(id)]) live.push_back(id);
+    }
+    const int pick = live.empty() ? -1 : live[std::uniform_int_distribution<std::size_t>(0, live.size() - 1)(rng)];
+    if (op == 0 || pick < 0) {
+      Piece p = randomBoxPiece(rng, "added " + std::to_string(step));
+      origin_of.push_back(p.origin);
+      added.push_back(p.polytope);
+      alive.push_back(true);
+      EXPECT_EQ(world.addPiece(std::move(p)), static_cast<int>(alive.size()) - 1);  // ids are never reused
+    } else if (op == 1) {
+      world.removePiece(pick);
+      alive[static_cast<std::size_t>(pick)] = false;
+    } else {
+      const Eigen::Isometry3d X = randomPose(rng, 5.0);
+      world.movePiece(pick, X);
+      EXPECT_TRUE(world.piecePose(pick).isApprox(X));
+      // The geometry as added, moved by X (not by the previous moves).
+      const Piece& moved = world.pieces()[static_cast<std::size_t>(world.indexOf(pick))];
+      const ConvexPolytope& ref = added[static_cast<std::size_t>(pick)];
+      ASSERT_EQ(moved.polytope.numVertices(), ref.numVertices());
+      for (const Eigen::Vector3d& v : ref.vertices()) {
+        double nearest = 1e300;
+        for (const Eigen::Vector3d& w : moved.polytope.vertices()) nearest = std::min(nearest, (X * v - w).norm());
+        EXPECT_LE(nearest, 1e-12);
+      }
+    }
+    // Ids and indices agree; origins follow their ids.
+    int count = 0;
+    for (int id = 0; id < static_cast<int>(alive.size()); ++id) {
+      ASSERT_EQ(world.hasPiece(id), alive[static_cast<std::size_t>(id)]) << "step " << step << " id " << id;
+      if (!alive[static_cast<std::size_t>(id)]) continue;
+      ++count;
+      const int index = world.indexOf(id);
+      EXPECT_EQ(world.idOf(index), id);
+      EXPECT_EQ(world.pieces()[static_cast<std::size_t>(index)].origin, origin_of[static_cast<std::size_t>(id)]);
+    }
+    ASSERT_EQ(static_cast<int>(world.pieces().size()), count);
+    Eigen::AlignedBox3d box;
+    box.setEmpty();
+    for (const Piece& p : world.pieces()) box.extend(p.box);
+    EXPECT_TRUE(box.isEmpty() ? world.box().isEmpty() : world.box().isApprox(box)) << "step " << step;
+    // Candidates: exactly the pieces whose boxes meet the query, each once.
+    for (int q = 0; q < 10; ++q) {
+      const Eigen::AlignedBox3d query = randomBox(rng, 12.0, q % 3 == 0 ? 8.0 : 2.0);
+      std::vector<int> got;
+      world.candidates(query, &got);
+      std::sort(got.begin(), got.end());
+      const std::vector<int> expected = bruteCandidates(world, query);
+      ASSERT_EQ(got, expected) << "step " << step << " query " << q;
+      ++queries;
+      hits += static_cast<int>(expected.size());
+    }
+  }
+  EXPECT_GT(world.rebuilds(), 3);  // the overflow limit (16 at these sizes) was reached
+  EXPECT_GT(hits, queries / 4);    // the queries were not all empty
+}
+
+TEST(WorldUpdates, BadIdsAndPosesAreRefusedWithoutChange) {
+  std::mt19937_64 rng(5);
+  World world({randomBoxPiece(rng, "a"), randomBoxPiece(rng, "b")}, "w");
+  const auto expectInvalid = [](const std::function<void()>& f, const std::string& part) {
+    try {
+      f();
+      ADD_FAILURE() << "no InvalidInputError (expected '" << part << "')";
+    } catch (const InvalidInputError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  expectInvalid([&] { world.removePiece(2); }, "no piece with id 2");
+  expectInvalid([&] { world.movePiece(-1, Eigen::Isometry3d::Identity()); }, "no piece with id -1");
+  world.removePiece(0);
+  EXPECT_EQ(world.indexOf(1), 0);
+  expectInvalid([&] { world.removePiece(0); }, "it was removed");
+  expectInvalid([&] { world.indexOf(0); }, "it was removed");
+  Eigen::Isometry3d nan = Eigen::Isometry3d::Identity();
+  nan.translation().x() = std::nan("");
+  const std::vector<Eigen::Vector3d> before = world.pieces()[0].polytope.vertices();
+  expectInvalid([&] { world.movePiece(1, nan); }, "non-finite");
+  EXPECT_EQ(world.pieces()[0].polytope.vertices(), before);
+  EXPECT_TRUE(world.piecePose(1).isApprox(Eigen::Isometry3d::Identity()));
 }
 
 }  // namespace

@@ -79,6 +79,10 @@ struct FclCcdOptions {
 };
 
 /// FCL's model of a robot and a world built from the same pieces (see above).
+/// It models the world's pieces as they are at construction and has no update
+/// path: after a world changes (scene::World or MddScene updates), build a new
+/// FclScene from the current world (e.g. MddScene::worldPtr()) to keep the
+/// baseline on identical geometry.
 class FclScene {
  public:
   /// Throws InvalidInputError for a null robot or world.

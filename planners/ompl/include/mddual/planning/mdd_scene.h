@@ -58,7 +58,8 @@
 //      again (their e is half, so they use level k + 1 or finer). A contact
 //      at the finest level at distance d along v: the edge collides, with a
 //      first contact no earlier than ta + (tb - ta) d / |v| (ta when v = 0).
-//      Every (robot piece, world piece, time) is covered by the root triple,
+//      Every (robot piece, world piece, time) is covered by the root triple
+//      (one per world tree once the world has changed: see below),
 //      a split replaces a triple by triples that cover it, and a triple is
 //      dropped only when cleared or when the pair is free on it. So when the
 //      edge is declared free, no piece touches another at any time of it.
@@ -80,9 +81,39 @@
 //    contact or when the true pieces of a refuted pair intersect at the
 //    refuted sweep's contact time (a state of the edge that collides).
 //
+// Worlds that change (addWorldPiece, removeWorldPiece, moveWorldPiece): the
+// world side of every traversal above is a forest of two hierarchies, a
+// static Bvh over the world's pieces as they were at its last build, whose
+// leaves of removed or moved pieces are skipped (a skipped leaf is a pair
+// without contact: the piece is not in the world), and an overflow Bvh over
+// the pieces added or moved since, rebuilt at each update (at most
+// scene::World::overflowLimit(n) = max(16, 2 sqrt(n)) pieces); both are
+// rebuilt from the current pieces once the overflow and the skipped leaves
+// together exceed that limit. Every current world piece is a live leaf of
+// exactly one of the two trees, so the arguments above hold with "the world's
+// hierarchy" read as "each of the two": collides() and sweep() run their
+// traversal on each tree (the sweep's second cast limited to the first's
+// best contact), and checkRotating starts with one root triple per non-empty
+// world tree, which together cover every (robot piece, world piece, time).
+// Verdicts, first-contact distances and translation edges' fractions do not
+// depend on the history of updates (test_mdd_scene compares them with a scene
+// built from scratch); which pair is reported at a tie, the contact a yes/no
+// sweep stops at, and a rotating edge's bound and false alarms (within the
+// enlargement) may depend on the shape of the world's trees, as they may for
+// any two builds of the same pieces.
+// Warm starts are keyed by the world piece's id (scene::World), which an
+// update does not change: the other pairs keep theirs. A moved piece keeps
+// its own too (only where the next search starts; the core range-checks
+// it).
+//
 // Thread safety: const methods may be called from any number of threads. Warm
 // starts are kept per thread, per (robot piece, world piece, enlargement
 // level) and per MddScene instance (PerThread, keyed by an instance id).
+// The updates are not thread-safe: call them only while no query runs on
+// this scene or on anything that uses it (the OMPL checkers over it, the
+// clearance queries): between planning calls, never during one. A World given
+// to the constructor must not be changed behind the scene's back (its trees
+// would no longer match it): change the scene's world through the scene.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -191,9 +222,26 @@ class MddScene {
   /// robot point within delta of its interval's middle orientation (the
   /// intervals the coarsest leaf queries use for a piece at the robot radius).
   int subEdgeCount(double angle) const;
-  /// The hierarchies: the robot's pieces (frame R) and the world's (frame W).
+  /// The hierarchies: the robot's pieces (frame R) and the world's static
+  /// tree (frame W; after updates, its pieces are the world's at the last
+  /// rebuild: see "Worlds that change" above).
   const Bvh& robotTree() const { return robot_tree_; }
   const Bvh& worldTree() const { return world_tree_; }
+
+  // ---- Worlds that change (see the file comment; not thread-safe). The
+  // first update copies the world: the World given to the constructor is
+  // never modified, and world() / worldPtr() return the copy from then on.
+  // Ids are scene::World's (a constructed world's pieces have ids 0 .. n-1).
+  /// Adds a world piece (frame W); returns its id.
+  int addWorldPiece(scene::Piece piece);
+  /// Removes world piece `id` (scene::World::removePiece: the last piece
+  /// takes its index). Throws InvalidInputError for an unknown id.
+  void removeWorldPiece(int id);
+  /// Poses world piece `id` at X_WP relative to its geometry as added
+  /// (scene::World::movePiece). Throws as it does.
+  void moveWorldPiece(int id, const Eigen::Isometry3d& X_WP);
+  /// Rebuilds of the world's static tree so far (statistics and tests).
+  int worldTreeRebuilds() const { return world_rebuilds_; }
 
   /// Whether the robot at X_WR touches or overlaps a world piece. `which`
   /// receives the first colliding pair found (p_WC, n_W NaN).
@@ -241,14 +289,32 @@ class MddScene {
   /// Margin that grows the robot's node volumes to hold piece set `set`.
   double setMargin(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;
-  static WarmStart* warmIn(WarmTable& table, int set, int robot_piece, int world_piece);
+  /// The warm start of (robot piece, world piece id) of set `set`.
+  static WarmStart* warmIn(WarmTable& table, int set, int robot_piece, int world_id);
+  /// World tree t (0: static, 1: overflow).
+  const Bvh& worldTreeAt(int t) const { return t == 0 ? world_tree_ : overflow_tree_; }
+  /// The world index of piece k of world tree t, or -1 when that leaf is
+  /// skipped (removed, or moved into the overflow).
+  int worldIndex(int t, int k) const;
+  /// The world, copied on the first update.
+  scene::World& mutableWorld();
+  /// After an update: the overflow tree, or both trees past the limit.
+  void refreshWorldTrees();
+  void buildWorldTrees();
 
   std::shared_ptr<const scene::RigidBody> robot_;
   std::shared_ptr<const scene::World> world_;
   double delta_ = 0.0;
   std::vector<EnlargedLevel> enlarged_;
-  Bvh robot_tree_;  ///< over robot_->pieces(), frame R
-  Bvh world_tree_;  ///< over world_->pieces(), frame W
+  Bvh robot_tree_;                 ///< over robot_->pieces(), frame R
+  Bvh world_tree_;                 ///< static: over the world's pieces at the last build, frame W
+  Bvh overflow_tree_;              ///< over the pieces added or moved since, frame W
+  std::vector<int> static_ids_;    ///< piece k of world_tree_ -> world piece id
+  std::vector<int> overflow_ids_;  ///< piece k of overflow_tree_ -> world piece id
+  std::vector<char> in_static_;    ///< id -> world_tree_ holds the piece's current geometry
+  int stale_ = 0;                  ///< skipped leaves of world_tree_
+  int world_rebuilds_ = 0;
+  std::shared_ptr<scene::World> own_world_;  ///< the copy the updates modify (null before the first)
   PerThread<WarmTable> warm_;
 };
 

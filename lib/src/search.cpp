@@ -495,41 +495,41 @@ RayExit searchRay(const PairGeometry& pair, const RayQuery& query, SearchStats* 
 }
 
 Eigen::Vector3d contactPointOnA(const PairGeometry& pair, const RayExit& exit, const Eigen::Vector3d& x_A) {
+  // x = a - b with a on A's feature supporting n and b on B's feature
+  // supporting -n: decompose x over the polygon conv(ties of A) -
+  // conv(ties of B) in the face's plane (this covers FV, VF and EE faces and
+  // face-face patches alike). The tie sets must hold the whole face of M that
+  // x lies on: a face of A or B that is planar only to round-off (a hull
+  // split into nearly coplanar facets, points rounded far from the origin)
+  // has vertices farther below the support value than the tie tolerance, and
+  // a partial tie set gives a smaller polygon that may miss x (the point
+  // returned was then off one of the bodies by a good part of their size).
+  // So the tolerance grows until the polygon holds x.
   std::vector<int>& ties_a = scratch().ties_a;
   std::vector<int>& ties_b = scratch().ties_b;
-  ties_a.clear();
-  ties_b.clear();
-  const double tie = pair.tieTolerance();
-  pair.a().supportTies(exit.n_A, exit.va, tie, &ties_a);
-  pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, tie, &ties_b);
-  // x = a - b with a on A's supporting feature and b on B's.
-  if (ties_a.size() == 1) return pair.a().localVertex(ties_a[0]);
-  if (ties_b.size() == 1) return x_A + pair.bVertex(ties_b[0]);
+  const double tol = pair.touchTolerance();
+  const double max_delta = defaults::kContactTieMaxRel * pair.scale();
   std::vector<Eigen::Vector3d> pa;
   std::vector<Eigen::Vector3d> pb;
-  for (int v : ties_a) pa.push_back(pair.a().localVertex(v));
-  for (int v : ties_b) pb.push_back(pair.bVertex(v));
-  if (pa.size() == 2 && pb.size() == 2) {
-    // Edge-edge: the point of edge a0-a1 closest to the line (b0-b1) + x.
-    const Eigen::Vector3d da = pa[1] - pa[0];
-    const Eigen::Vector3d db = pb[1] - pb[0];
-    const Eigen::Vector3d r = pa[0] - (pb[0] + x_A);
-    const double aa = da.dot(da), ab = da.dot(db), bb = db.dot(db);
-    const double denom = aa * bb - ab * ab;
-    if (denom > 1e-24 * aa * bb) {
-      const double lambda = std::clamp((ab * db.dot(r) - bb * da.dot(r)) / denom, 0.0, 1.0);
-      return pa[0] + lambda * da;
+  Eigen::Vector3d best_a = pair.a().localVertex(exit.va);
+  double best_outside = kInf;
+  for (double delta = pair.tieTolerance();; delta *= defaults::kContactTieGrowth) {
+    ties_a.clear();
+    ties_b.clear();
+    pair.a().supportTies(exit.n_A, exit.va, delta, &ties_a);
+    pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, delta, &ties_b);
+    pa.clear();
+    pb.clear();
+    for (int v : ties_a) pa.push_back(pair.a().localVertex(v));
+    for (int v : ties_b) pb.push_back(pair.bVertex(v));
+    double outside = kInf;
+    const Eigen::Vector3d a = PlanarDifference(pa, pb, exit.n_A).pointOfA(x_A, &outside);
+    if (outside < best_outside) {
+      best_outside = outside;
+      best_a = a;
     }
+    if (best_outside <= tol || delta >= max_delta) return best_a;
   }
-  // General case (a face of M spanned by larger features): decompose x in the
-  // face's plane, interpolating between the ends of a slice through x.
-  const PlanarDifference face(pa, pb, exit.n_A);
-  const Eigen::Vector3d t = std::abs(exit.n_A.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const PlanarSlice slice = face.slice(x_A, exit.n_A.cross(t).normalized(), pair.touchTolerance());
-  if (!slice.hit) return x_A + pb[0];
-  if (!(slice.s_hi > slice.s_lo)) return slice.a_lo;
-  const double lambda = std::clamp(-slice.s_lo / (slice.s_hi - slice.s_lo), 0.0, 1.0);
-  return slice.a_lo + lambda * (slice.a_hi - slice.a_lo);
 }
 
 }  // namespace mddual::detail

@@ -101,6 +101,56 @@ TEST(QueryRegressions, SupportOnTheRayWithinRoundOff) {
          ContactStatus::kTouching});
 }
 
+TEST(QueryRegressions, ContactPointOnBothBodiesForRoundedCoplanarFaces) {
+  // A pentagonal prism and its shifted copy, rounded at an offset of ~1.5e5
+  // (MDDUAL_SWEEP_SCALE=10 MDDUAL_SWEEP_SEED=7 test_far_from_origin): their
+  // pentagons are parallel and planar only to ~2e-12, more than the support
+  // tie tolerance (1.4e-12 here). The contact (an FV face: A's pentagon, one
+  // vertex of B) took B's tie set as that vertex alone and returned x + b, a
+  // point of B that was 0.09 to 0.39 outside A; the distances were right.
+  const std::vector<Eigen::Vector3d> a{{-156108.00832163668, 91417.017613074713, 85281.499540166318},
+                                       {-156109.12788326506, 91416.66307059578, 85281.552901220726},
+                                       {-156109.33546499576, 91417.024150605197, 85279.596749117263},
+                                       {-156108.21590336738, 91417.378693084131, 85279.543388062855},
+                                       {-156107.98299317443, 91418.173862546828, 85281.710280856438},
+                                       {-156109.08690095227, 91418.533921541137, 85281.893886820151},
+                                       {-156109.79448194164, 91417.600200765461, 85281.796620856141},
+                                       {-156110.00206367235, 91417.961280774878, 85279.840468752678},
+                                       {-156108.19057490514, 91418.53494255626, 85279.754128752975},
+                                       {-156109.29448268298, 91418.895001550569, 85279.937734716688}};
+  const std::vector<Eigen::Vector3d> b{{-156108.92045631251, 91416.42495905103, 85282.388106648606},
+                                       {-156109.5870549891, 91417.362089220711, 85282.631826284021},
+                                       {-156109.7946367198, 91417.723169230128, 85280.675674180558},
+                                       {-156109.12803804321, 91416.786039060447, 85280.431954545144},
+                                       {-156108.00847641483, 91417.140581539381, 85280.378593490736},
+                                       {-156107.98314795256, 91418.29683101151, 85280.589334180855},
+                                       {-156107.77556622186, 91417.935751002078, 85282.545486284318},
+                                       {-156107.80089468413, 91416.779501529963, 85282.334745594198},
+                                       {-156109.0870557304, 91418.656890005819, 85280.772940144569},
+                                       {-156108.8794739997, 91418.295809996387, 85282.729092248017}};
+  const std::vector<Eigen::Vector3d> directions{{-0.21072026616374634, -0.33269322727694428, 0.91919104975621446},
+                                                {-0.11545440860461005, 0.40762469125275175, -0.90582139001839579},
+                                                {-0.27076052802687606, -0.27486302070324009, 0.92257197893307907}};
+  // The same points moved to the origin: subtracting this integer vector is
+  // exact (Sterbenz), so the faces keep their round-off; it failed there too.
+  const Eigen::Vector3d offset(-156109, 91417, 85281);
+  for (const bool at_origin : {false, true}) {
+    Pinned p{at_origin ? "pentagonal prisms, moved to the origin" : "pentagonal prisms at 1.5e5",
+             a,
+             b,
+             {},
+             ContactStatus::kPenetrating};
+    if (at_origin) {
+      for (Eigen::Vector3d& v : p.a) v -= offset;
+      for (Eigen::Vector3d& v : p.b) v -= offset;
+    }
+    for (const Eigen::Vector3d& s : directions) {
+      p.direction = s;
+      check(p);
+    }
+  }
+}
+
 /// Axis-aligned cube of half side h centred at c.
 std::vector<Eigen::Vector3d> cube(const Eigen::Vector3d& c, double h) {
   std::vector<Eigen::Vector3d> out;

@@ -71,6 +71,19 @@ inline constexpr double kTouchRel = 1e-10;
 // (edge pairs that cannot form an EE face, lines parallel to a plane).
 inline constexpr double kParallelSin = 1e-12;
 
+// Contact points: the point x of M where the line leaves it is split as
+// x = a - b over the vertices of A and B within delta of their support values
+// in the contact normal's direction. delta starts at kSupportTieRel * L and
+// grows by kContactTieGrowth until the polygon those vertices span in the
+// contact plane holds x (within kTouchRel * L), up to kContactTieMaxRel * L.
+// Reason: a face that is planar only to round-off (nearly coplanar hull
+// facets; points rounded far from the origin, about 1e-16 of the offset,
+// 1e-8 L at an offset of 1e8 L) has vertices below the support value by more
+// than the tie tolerance. a is a point of A and b lies within about 2 delta
+// of B. Dimensionless.
+inline constexpr double kContactTieGrowth = 10.0;
+inline constexpr double kContactTieMaxRel = 1e-6;
+
 // Iteration cap of the 2D portal refinement that finds the centre of duality.
 // On a polytope it terminates in at most (vertices of the projection) steps;
 // the cap only guards against non-termination from round-off.

@@ -85,6 +85,10 @@ struct Candidate {
   /// vertex wins by more than the tie tolerance, the arcs cross strictly
   /// inside), so its neighbours on M are the faces across its own edges.
   bool generic = false;
+  /// Generic, but only just: the support gap or the arcs' margin is within
+  /// round-off of nearly planar faces (defaults::kContactTieMaxRel), so that
+  /// the face may have neighbours its edges do not name.
+  bool nearly_degenerate = false;
 };
 
 class Searcher {
@@ -161,6 +165,7 @@ bool Searcher::evalFV(int fa, int hint_b, const Candidate& best, Candidate* c) c
   double gap = 0.0;
   c->vb = pair_.supportMinusB(c->n, hint_b, stats_, &gap);
   c->generic = gap > pair_.tieTolerance();
+  c->nearly_degenerate = gap <= defaults::kContactTieMaxRel * pair_.scale();
   c->va = a_.faceVertices(fa)[0];
   c->h = a_.localFaceOffset(fa) - c->n.dot(pair_.bVertex(c->vb));
   c->phi = objective(c->n, c->h);
@@ -178,6 +183,7 @@ bool Searcher::evalVF(int fb, int hint_a, const Candidate& best, Candidate* c) c
   double gap = 0.0;
   c->va = pair_.supportA(c->n, hint_a, stats_, &gap);
   c->generic = gap > pair_.tieTolerance();
+  c->nearly_degenerate = gap <= defaults::kContactTieMaxRel * pair_.scale();
   c->vb = b_.faceVertices(fb)[0];
   c->h = c->n.dot(a_.localVertex(c->va)) + h_b;
   c->phi = objective(c->n, c->h);
@@ -206,9 +212,21 @@ bool Searcher::evalEE(const EdgeInA& ea, const EdgeInA& eb, Candidate* c) const 
   c->face = {FaceOfM::Kind::kEE, ea.id, eb.id};
   c->n = n;
   c->generic = margin > defaults::kParallelSin;
+  c->nearly_degenerate = margin <= defaults::kContactTieMaxRel || sine < defaults::kEdgeEdgeWellConditionedSin;
   c->h = n.dot(ea.p0) - n.dot(eb.p0);
   c->va = ea.v0;
   c->vb = eb.v0;
+  if (sine < defaults::kEdgeEdgeWellConditionedSin) {
+    // Nearly parallel edges: n carries a relative error of about 1e-16 /
+    // sine, and the plane through the edges with that normal can cut into M
+    // (a better phi than the true exit face's, a shorter distance). The
+    // support values of A and B along n give a plane that bounds M whatever
+    // the error in n; its features are read off as ties.
+    c->va = pair_.supportA(n, ea.v0, stats_);
+    c->vb = pair_.supportMinusB(n, eb.v0, stats_);
+    c->h = n.dot(a_.localVertex(c->va)) - n.dot(pair_.bVertex(c->vb));
+    c->generic = false;
+  }
   c->phi = objective(n, c->h);
   return true;
 }
@@ -418,12 +436,27 @@ bool Searcher::edgeNeighbours(const Candidate& current, Candidate* best) {
 }
 
 Candidate Searcher::searchEE(Candidate current) {
-  const double tie = pair_.tieTolerance();
+  // Ties within `tie` name the current face's features. A face that is
+  // planar only to round-off (nearly coplanar hull facets, points rounded far
+  // from the origin) has vertices below the support value by more than the
+  // tie tolerance, and a tie set missing them misses neighbours of the
+  // current face: before a non-generic face is taken as the optimum, the
+  // tolerance grows (defaults::kContactTieGrowth, up to kContactTieMaxRel)
+  // and the larger tie sets' faces are evaluated too.
+  const double base_tie = pair_.tieTolerance();
+  const double max_tie = defaults::kContactTieMaxRel * pair_.scale();
+  double tie = base_tie;
+  size_t tied = 0;      // tie set sizes at the last evaluation of this face
+  bool verify = false;  // a nearly degenerate local optimum, checked once more through its ties
   for (;;) {
-    if (current.generic) {
+    if (current.generic && !verify) {
       Candidate best = current;
       if (edgeNeighbours(current, &best)) return best;
-      if (!(best.phi > current.phi)) return current;
+      if (!(best.phi > current.phi)) {
+        if (!current.nearly_degenerate) return current;
+        verify = true;
+        continue;
+      }
       current = best;
       checkSteps();
       continue;
@@ -433,6 +466,13 @@ Candidate Searcher::searchEE(Candidate current) {
     s_.ties_b.clear();
     a_.supportTies(current.n, current.va, tie, &s_.ties_a);
     b_.supportTies(-pair_.aToB(current.n), current.vb, tie, &s_.ties_b);
+    if (tie > base_tie && s_.ties_a.size() + s_.ties_b.size() == tied) {
+      // A wider tolerance that adds no vertex adds no face.
+      if (tie >= max_tie) return current;
+      tie *= defaults::kContactTieGrowth;
+      continue;
+    }
+    tied = s_.ties_a.size() + s_.ties_b.size();
     Candidate best = current;
     for (int v : s_.ties_a) {
       for (int f : a_.vertexFaces(v)) {
@@ -457,8 +497,15 @@ Candidate Searcher::searchEE(Candidate current) {
         if (take(c, Phase::kEE, &best)) return best;
       }
     }
-    if (!(best.phi > current.phi)) return current;
+    if (!(best.phi > current.phi)) {
+      if (tie >= max_tie) return current;
+      tie *= defaults::kContactTieGrowth;
+      continue;
+    }
     current = best;
+    tie = base_tie;
+    tied = 0;
+    verify = false;
     checkSteps();
   }
 }

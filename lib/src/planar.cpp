@@ -11,6 +11,11 @@ double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::V
   return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
 }
 
+/// Barycentric weights down to -kFanWeightSlack count as inside a triangle
+/// (round-off of a point on a side); dimensionless, so the point moves by at
+/// most this fraction of the triangle's size when they are clamped to 0.
+constexpr double kFanWeightSlack = 1e-12;
+
 }  // namespace
 
 PlanarDifference::PlanarDifference(const std::vector<Eigen::Vector3d>& pa, const std::vector<Eigen::Vector3d>& pb,
@@ -125,6 +130,57 @@ double PlanarDifference::outsideDistance(const Eigen::Vector3d& x, Eigen::Vector
     }
   }
   return best;
+}
+
+Eigen::Vector3d PlanarDifference::pointOfA(const Eigen::Vector3d& x, double* outside) const {
+  const Eigen::Vector2d x2 = toPlane(x);
+  const int n = static_cast<int>(hull_.size());
+  // Inside a polygon: barycentric weights in the triangle of the fan from
+  // hull vertex 0 that holds x (the same weights combine the points of A).
+  // The triangle whose smallest weight is largest: a point on a diagonal may
+  // get a weight of -1e-17 in both triangles beside it.
+  double best_min = -std::numeric_limits<double>::infinity();
+  Eigen::Vector3d w_best = Eigen::Vector3d::Zero();
+  int k_best = -1;
+  for (int k = 1; k + 1 < n; ++k) {
+    const Eigen::Vector2d& p0 = hull_[0].q;
+    const Eigen::Vector2d& p1 = hull_[k].q;
+    const Eigen::Vector2d& p2 = hull_[k + 1].q;
+    const double area = cross2(p0, p1, p2);
+    if (!(area > 0.0)) continue;
+    const double w1 = cross2(p0, x2, p2) / area;
+    const double w2 = cross2(p0, p1, x2) / area;
+    const Eigen::Vector3d w(1.0 - w1 - w2, w1, w2);
+    if (w.minCoeff() > best_min) {
+      best_min = w.minCoeff();
+      w_best = w;
+      k_best = k;
+    }
+  }
+  if (k_best >= 0 && best_min >= -kFanWeightSlack) {
+    const Eigen::Vector3d w = w_best.cwiseMax(0.0) / w_best.cwiseMax(0.0).sum();
+    *outside = 0.0;
+    return w[0] * pa_[hull_[0].i] + w[1] * pa_[hull_[k_best].i] + w[2] * pa_[hull_[k_best + 1].i];
+  }
+  // Outside (or a point, a segment, or on the boundary up to round-off): the
+  // nearest point of the polygon lies on one of its edges (or is its only
+  // vertex); interpolate the points of A along that edge.
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d a = pa_[hull_[0].i];
+  for (int k = 0; k < n; ++k) {
+    const Vertex& p = hull_[k];
+    const Vertex& q = hull_[(k + 1) % n];
+    const Eigen::Vector2d e = q.q - p.q;
+    const double len2 = e.squaredNorm();
+    const double lambda = len2 > 0.0 ? std::clamp(e.dot(x2 - p.q) / len2, 0.0, 1.0) : 0.0;
+    const double dist = (p.q + lambda * e - x2).norm();
+    if (dist < best) {
+      best = dist;
+      a = (1.0 - lambda) * pa_[p.i] + lambda * pa_[q.i];
+    }
+  }
+  *outside = best;
+  return a;
 }
 
 }  // namespace mddual::detail

@@ -43,6 +43,13 @@ class PlanarDifference {
   /// extent along its own line too.
   double outsideDistance(const Eigen::Vector3d& x, Eigen::Vector3d* edge_normal) const;
 
+  /// Decomposes the in-plane projection of x as a - b over the polygon: a
+  /// and b are convex combinations of the points of A and of B given, and
+  /// a - b is x's projection when that lies in the polygon, else the
+  /// polygon's point nearest to it. Returns a; *outside is how far x's
+  /// projection lies outside the polygon (0 inside).
+  Eigen::Vector3d pointOfA(const Eigen::Vector3d& x, double* outside) const;
+
  private:
   struct Vertex {
     Eigen::Vector2d q;  // in-plane coordinates

@@ -189,8 +189,12 @@ void PolytopeBuilder::buildSolid(const std::vector<Eigen::Vector3d>& points, dou
 void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::vector<Face> faces) {
   ConvexPolytope& p = *out_;
   // Drop boundary points that are not corners: for solids, a vertex of fewer
-  // than three faces (on an edge or inside a face); for both, a vertex where
-  // its face loop goes straight on.
+  // than three faces (on an edge or inside a face); for flat polygons, a
+  // vertex where the loop goes straight on. Each point is dropped from every
+  // loop or from none: a solid's vertex of three or more faces stays in all of
+  // them even where one loop goes straight on there (nearly coplanar facets
+  // meeting on an edge of a third face), since dropping it from that loop
+  // alone left the edges on either side of it with one face each.
   std::vector<int> face_count(points.size(), 0);
   for (const Face& f : faces)
     for (int v : f.loop) ++face_count[v];
@@ -201,7 +205,7 @@ void PolytopeBuilder::finish(const std::vector<Eigen::Vector3d>& points, std::ve
       const Eigen::Vector3d& a = points[f.loop[(i + k - 1) % k]];
       const Eigen::Vector3d& b = points[f.loop[i]];
       const Eigen::Vector3d& c = points[f.loop[(i + 1) % k]];
-      const bool straight = (b - a).cross(c - b).norm() <= 1e-14 * (b - a).norm() * (c - b).norm();
+      const bool straight = p.flat_ && (b - a).cross(c - b).norm() <= 1e-14 * (b - a).norm() * (c - b).norm();
       const bool hidden = !p.flat_ && face_count[f.loop[i]] < 3;
       if (!straight && !hidden) kept.push_back(f.loop[i]);
     }

@@ -85,6 +85,10 @@ struct Candidate {
   /// vertex wins by more than the tie tolerance, the arcs cross strictly
   /// inside), so its neighbours on M are the faces across its own edges.
   bool generic = false;
+  /// Generic, but only just: the support gap or the arcs' margin is within
+  /// round-off of nearly planar faces (defaults::kContactTieMaxRel), so that
+  /// the face may have neighbours its edges do not name.
+  bool nearly_degenerate = false;
 };
 
 class Searcher {
@@ -161,6 +165,7 @@ bool Searcher::evalFV(int fa, int hint_b, const Candidate& best, Candidate* c) c
   double gap = 0.0;
   c->vb = pair_.supportMinusB(c->n, hint_b, stats_, &gap);
   c->generic = gap > pair_.tieTolerance();
+  c->nearly_degenerate = gap <= defaults::kContactTieMaxRel * pair_.scale();
   c->va = a_.faceVertices(fa)[0];
   c->h = a_.localFaceOffset(fa) - c->n.dot(pair_.bVertex(c->vb));
   c->phi = objective(c->n, c->h);
@@ -178,6 +183,7 @@ bool Searcher::evalVF(int fb, int hint_a, const Candidate& best, Candidate* c) c
   double gap = 0.0;
   c->va = pair_.supportA(c->n, hint_a, stats_, &gap);
   c->generic = gap > pair_.tieTolerance();
+  c->nearly_degenerate = gap <= defaults::kContactTieMaxRel * pair_.scale();
   c->vb = b_.faceVertices(fb)[0];
   c->h = c->n.dot(a_.localVertex(c->va)) + h_b;
   c->phi = objective(c->n, c->h);
@@ -206,9 +212,21 @@ bool Searcher::evalEE(const EdgeInA& ea, const EdgeInA& eb, Candidate* c) const 
   c->face = {FaceOfM::Kind::kEE, ea.id, eb.id};
   c->n = n;
   c->generic = margin > defaults::kParallelSin;
+  c->nearly_degenerate = margin <= defaults::kContactTieMaxRel || sine < defaults::kEdgeEdgeWellConditionedSin;
   c->h = n.dot(ea.p0) - n.dot(eb.p0);
   c->va = ea.v0;
   c->vb = eb.v0;
+  if (sine < defaults::kEdgeEdgeWellConditionedSin) {
+    // Nearly parallel edges: n carries a relative error of about 1e-16 /
+    // sine, and the plane through the edges with that normal can cut into M
+    // (a better phi than the true exit face's, a shorter distance). The
+    // support values of A and B along n give a plane that bounds M whatever
+    // the error in n; its features are read off as ties.
+    c->va = pair_.supportA(n, ea.v0, stats_);
+    c->vb = pair_.supportMinusB(n, eb.v0, stats_);
+    c->h = n.dot(a_.localVertex(c->va)) - n.dot(pair_.bVertex(c->vb));
+    c->generic = false;
+  }
   c->phi = objective(n, c->h);
   return true;
 }
@@ -418,12 +436,27 @@ bool Searcher::edgeNeighbours(const Candidate& current, Candidate* best) {
 }
 
 Candidate Searcher::searchEE(Candidate current) {
-  const double tie = pair_.tieTolerance();
+  // Ties within `tie` name the current face's features. A face that is
+  // planar only to round-off (nearly coplanar hull facets, points rounded far
+  // from the origin) has vertices below the support value by more than the
+  // tie tolerance, and a tie set missing them misses neighbours of the
+  // current face: before a non-generic face is taken as the optimum, the
+  // tolerance grows (defaults::kContactTieGrowth, up to kContactTieMaxRel)
+  // and the larger tie sets' faces are evaluated too.
+  const double base_tie = pair_.tieTolerance();
+  const double max_tie = defaults::kContactTieMaxRel * pair_.scale();
+  double tie = base_tie;
+  size_t tied = 0;      // tie set sizes at the last evaluation of this face
+  bool verify = false;  // a nearly degenerate local optimum, checked once more through its ties
   for (;;) {
-    if (current.generic) {
+    if (current.generic && !verify) {
       Candidate best = current;
       if (edgeNeighbours(current, &best)) return best;
-      if (!(best.phi > current.phi)) return current;
+      if (!(best.phi > current.phi)) {
+        if (!current.nearly_degenerate) return current;
+        verify = true;
+        continue;
+      }
       current = best;
       checkSteps();
       continue;
@@ -433,6 +466,13 @@ Candidate Searcher::searchEE(Candidate current) {
     s_.ties_b.clear();
     a_.supportTies(current.n, current.va, tie, &s_.ties_a);
     b_.supportTies(-pair_.aToB(current.n), current.vb, tie, &s_.ties_b);
+    if (tie > base_tie && s_.ties_a.size() + s_.ties_b.size() == tied) {
+      // A wider tolerance that adds no vertex adds no face.
+      if (tie >= max_tie) return current;
+      tie *= defaults::kContactTieGrowth;
+      continue;
+    }
+    tied = s_.ties_a.size() + s_.ties_b.size();
     Candidate best = current;
     for (int v : s_.ties_a) {
       for (int f : a_.vertexFaces(v)) {
@@ -457,8 +497,15 @@ Candidate Searcher::searchEE(Candidate current) {
         if (take(c, Phase::kEE, &best)) return best;
       }
     }
-    if (!(best.phi > current.phi)) return current;
+    if (!(best.phi > current.phi)) {
+      if (tie >= max_tie) return current;
+      tie *= defaults::kContactTieGrowth;
+      continue;
+    }
     current = best;
+    tie = base_tie;
+    tied = 0;
+    verify = false;
     checkSteps();
   }
 }
@@ -495,41 +542,41 @@ RayExit searchRay(const PairGeometry& pair, const RayQuery& query, SearchStats* 
 }
 
 Eigen::Vector3d contactPointOnA(const PairGeometry& pair, const RayExit& exit, const Eigen::Vector3d& x_A) {
+  // x = a - b with a on A's feature supporting n and b on B's feature
+  // supporting -n: decompose x over the polygon conv(ties of A) -
+  // conv(ties of B) in the face's plane (this covers FV, VF and EE faces and
+  // face-face patches alike). The tie sets must hold the whole face of M that
+  // x lies on: a face of A or B that is planar only to round-off (a hull
+  // split into nearly coplanar facets, points rounded far from the origin)
+  // has vertices farther below the support value than the tie tolerance, and
+  // a partial tie set gives a smaller polygon that may miss x (the point
+  // returned was then off one of the bodies by a good part of their size).
+  // So the tolerance grows until the polygon holds x.
   std::vector<int>& ties_a = scratch().ties_a;
   std::vector<int>& ties_b = scratch().ties_b;
-  ties_a.clear();
-  ties_b.clear();
-  const double tie = pair.tieTolerance();
-  pair.a().supportTies(exit.n_A, exit.va, tie, &ties_a);
-  pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, tie, &ties_b);
-  // x = a - b with a on A's supporting feature and b on B's.
-  if (ties_a.size() == 1) return pair.a().localVertex(ties_a[0]);
-  if (ties_b.size() == 1) return x_A + pair.bVertex(ties_b[0]);
+  const double tol = pair.touchTolerance();
+  const double max_delta = defaults::kContactTieMaxRel * pair.scale();
   std::vector<Eigen::Vector3d> pa;
   std::vector<Eigen::Vector3d> pb;
-  for (int v : ties_a) pa.push_back(pair.a().localVertex(v));
-  for (int v : ties_b) pb.push_back(pair.bVertex(v));
-  if (pa.size() == 2 && pb.size() == 2) {
-    // Edge-edge: the point of edge a0-a1 closest to the line (b0-b1) + x.
-    const Eigen::Vector3d da = pa[1] - pa[0];
-    const Eigen::Vector3d db = pb[1] - pb[0];
-    const Eigen::Vector3d r = pa[0] - (pb[0] + x_A);
-    const double aa = da.dot(da), ab = da.dot(db), bb = db.dot(db);
-    const double denom = aa * bb - ab * ab;
-    if (denom > 1e-24 * aa * bb) {
-      const double lambda = std::clamp((ab * db.dot(r) - bb * da.dot(r)) / denom, 0.0, 1.0);
-      return pa[0] + lambda * da;
+  Eigen::Vector3d best_a = pair.a().localVertex(exit.va);
+  double best_outside = kInf;
+  for (double delta = pair.tieTolerance();; delta *= defaults::kContactTieGrowth) {
+    ties_a.clear();
+    ties_b.clear();
+    pair.a().supportTies(exit.n_A, exit.va, delta, &ties_a);
+    pair.b().supportTies(-pair.aToB(exit.n_A), exit.vb, delta, &ties_b);
+    pa.clear();
+    pb.clear();
+    for (int v : ties_a) pa.push_back(pair.a().localVertex(v));
+    for (int v : ties_b) pb.push_back(pair.bVertex(v));
+    double outside = kInf;
+    const Eigen::Vector3d a = PlanarDifference(pa, pb, exit.n_A).pointOfA(x_A, &outside);
+    if (outside < best_outside) {
+      best_outside = outside;
+      best_a = a;
     }
+    if (best_outside <= tol || delta >= max_delta) return best_a;
   }
-  // General case (a face of M spanned by larger features): decompose x in the
-  // face's plane, interpolating between the ends of a slice through x.
-  const PlanarDifference face(pa, pb, exit.n_A);
-  const Eigen::Vector3d t = std::abs(exit.n_A.x()) < 0.6 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const PlanarSlice slice = face.slice(x_A, exit.n_A.cross(t).normalized(), pair.touchTolerance());
-  if (!slice.hit) return x_A + pb[0];
-  if (!(slice.s_hi > slice.s_lo)) return slice.a_lo;
-  const double lambda = std::clamp(-slice.s_lo / (slice.s_hi - slice.s_lo), 0.0, 1.0);
-  return slice.a_lo + lambda * (slice.a_hi - slice.a_lo);
 }
 
 }  // namespace mddual::detail

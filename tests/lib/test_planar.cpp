@@ -61,5 +61,43 @@ TEST(Planar, DegeneratePointAndSegment) {
   EXPECT_NEAR(across.s_hi, 3.0, 1e-15);
 }
 
+TEST(Planar, PointOfADecomposesInsideAndClampsOutside) {
+  // A = unit square, B = the point (0.25, 0.25): M = A - b. Inside, a - b is
+  // x itself, so a = x + b.
+  const std::vector<V> a{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const PlanarDifference m(a, {V(0.25, 0.25, 0)}, V::UnitZ());
+  double outside = -1.0;
+  V p = m.pointOfA(V(0.5, 0.25, 0), &outside);
+  EXPECT_EQ(outside, 0.0);
+  EXPECT_NEAR((p - V(0.75, 0.5, 0)).norm(), 0.0, 1e-15);
+  // On a diagonal of the fan and on the boundary.
+  p = m.pointOfA(V(0.25, 0.25, 0), &outside);
+  EXPECT_EQ(outside, 0.0);
+  EXPECT_NEAR((p - V(0.5, 0.5, 0)).norm(), 0.0, 1e-15);
+  p = m.pointOfA(V(0.75, -0.25, 0), &outside);
+  EXPECT_NEAR(outside, 0.0, 1e-15);
+  EXPECT_NEAR((p - V(1, 0, 0)).norm(), 0.0, 1e-15);
+  // Outside: the nearest point of M (x = (1, 0.25) is 0.25 beyond the edge
+  // x = 0.75 of M), and a is the point of A behind it.
+  p = m.pointOfA(V(1, 0.25, 0), &outside);
+  EXPECT_NEAR(outside, 0.25, 1e-15);
+  EXPECT_NEAR((p - V(1, 0.5, 0)).norm(), 0.0, 1e-15);
+  // Degenerate polygons: a point and a segment (parallel edges).
+  const PlanarDifference point({V(1, 2, 0)}, {V(0, 0, 0)}, V::UnitZ());
+  p = point.pointOfA(V(1, 2, 0), &outside);
+  EXPECT_EQ(outside, 0.0);
+  EXPECT_EQ(p, V(1, 2, 0));
+  const PlanarDifference seg({V(0, 0, 0), V(1, 0, 0)}, {V(0, 0, 0), V(2, 0, 0)}, V::UnitZ());
+  p = seg.pointOfA(V(-0.5, 0, 0), &outside);
+  EXPECT_NEAR(outside, 0.0, 1e-15);
+  EXPECT_GE(p.x(), 0.0);  // a in A, b = a - x in B
+  EXPECT_LE(p.x(), 1.0);
+  EXPECT_GE(p.x() + 0.5, 0.0);
+  EXPECT_LE(p.x() + 0.5, 2.0);
+  p = seg.pointOfA(V(0.5, 0.5, 0), &outside);
+  EXPECT_NEAR(outside, 0.5, 1e-15);
+  EXPECT_NEAR(p.y(), 0.0, 1e-15);
+}
+
 }  // namespace
 }  // namespace mddual::detail

@@ -189,6 +189,35 @@ TEST(Polytope, FarFromTheOriginKeepsItsShape) {
   expectWellFormed(tri);
 }
 
+TEST(Polytope, AStraightCornerOfNearlyCoplanarFacetsStaysInEveryLoop) {
+  // MDDUAL_SWEEP_SCALE=10 MDDUAL_SWEEP_SEED=7 test_far_from_origin: the
+  // brute force's M = A - A of a hexagonal prism rounded at ~1.6e6 threw
+  // "hull edge 9-12 borders only one face". A vertex of three or more hull
+  // facets where one facet's loop goes straight on was dropped from that
+  // loop only, leaving the edges beside it with one face each.
+  const Points a = {{336696.19525450299, -805975.94897517166, 1340546.9251244387},
+                    {336692.10467527987, -805962.07719614508, 1340553.7691662458},
+                    {336685.89795355493, -805961.43726316828, 1340548.7624616197},
+                    {336689.98853277805, -805975.30904219486, 1340541.9184198126},
+                    {336703.29486947093, -805972.86116499, 1340544.9099580466},
+                    {336686.79084679793, -805957.7095200097, 1340541.740590601},
+                    {336690.88142602105, -805971.58129903639, 1340534.8965487941},
+                    {336697.98104098899, -805968.49348885461, 1340532.8813824018},
+                    {336693.89046176587, -805954.62170982803, 1340539.7254242089},
+                    {336700.09718349081, -805955.26164280483, 1340544.7321288351},
+                    {336704.18776271393, -805969.13342183142, 1340537.8880870279},
+                    {336699.20429024781, -805958.9893859633, 1340551.7539998535}};
+  Points differences;
+  for (const Eigen::Vector3d& p : a)
+    for (const Eigen::Vector3d& q : a) differences.push_back(p - q);
+  const ConvexPolytope m = ConvexPolytope::fromPoints(differences);
+  expectWellFormed(m);
+  // M = A - A is symmetric and holds every difference.
+  for (const Eigen::Vector3d& d : differences) {
+    for (int f = 0; f < m.numFaces(); ++f) EXPECT_LE(m.faceNormal(f).dot(d), m.faceOffset(f) + 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace mddual
 

@@ -234,6 +234,39 @@ TEST(QueryFamilies, ExactlyTouchingPlacements) {
   EXPECT_GE(t.fraction(t.penetrating), 0.02);
 }
 
+TEST(QueryFamilies, ParallelFacesPlanarOnlyToRoundOff) {
+  // Boxes and prisms whose points are rotated in their coordinates and then
+  // jittered by 1e-12 to 1e-11 of their size, as rounding far from the origin
+  // does: faces that are planar only to round-off (split into nearly
+  // coplanar hull facets, or merged with vertices off the plane by more than
+  // the support tie tolerance), against a copy of the same points shifted
+  // by a small or an axis vector. The contact point is where such pairs went
+  // wrong (found at 1.5e5 by the far-from-origin sweep).
+  const Tally t = runFamily(
+      300,
+      [](Rng& rng, QueryOracle& o, Tally* tally) {
+        const double size = uniform(rng, 0.5, 2.0);
+        Points a = uniformInt(rng, 0, 1) == 0
+                       ? generators::box(Eigen::Vector3d(0.5, uniform(rng, 0.2, 0.5), uniform(rng, 0.1, 0.5)) * size)
+                       : generators::prism(uniformInt(rng, 3, 8), 0.5 * size, size);
+        const Eigen::Matrix3d R = generators::randomRotation(rng);
+        const double jitter = size * std::pow(10.0, uniform(rng, -12.0, -11.0));
+        for (Eigen::Vector3d& p : a) {
+          p = R * p + jitter * Eigen::Vector3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+        }
+        Eigen::Vector3d shift = generators::randomUnitVector(rng) * uniform(rng, 0.0, size);
+        if (uniformInt(rng, 0, 1) == 0) shift = R.col(uniformInt(rng, 0, 2)) * (0.25 * size);
+        Points b = a;
+        for (Eigen::Vector3d& p : b) p += shift;
+        std::vector<Eigen::Vector3d> dirs = aimedDirections(-shift, 6, rng);
+        for (int axis = 0; axis < 3; ++axis) dirs.push_back(R.col(axis) + 0.3 * generators::randomUnitVector(rng));
+        checkPair(a, Eigen::Isometry3d::Identity(), b, Eigen::Isometry3d::Identity(), dirs, o, tally);
+      },
+      1010);
+  EXPECT_GE(t.queries, 2500);
+  EXPECT_GE(t.fraction(t.penetrating), 0.60);  // copies overlap
+}
+
 TEST(QueryFamilies, DirectionsParallelToFacesAndAlongAxes) {
   // For random polytopes: directions in the plane of a facet of A or of B
   // (parallel to an FV or VF face of M), and the coordinate axes.

@@ -71,6 +71,30 @@ inline constexpr double kTouchRel = 1e-10;
 // (edge pairs that cannot form an EE face, lines parallel to a plane).
 inline constexpr double kParallelSin = 1e-12;
 
+// Contact points: the point x of M where the line leaves it is split as
+// x = a - b over the vertices of A and B within delta of their support values
+// in the contact normal's direction. delta starts at kSupportTieRel * L and
+// grows by kContactTieGrowth until the polygon those vertices span in the
+// contact plane holds x (within kTouchRel * L), up to kContactTieMaxRel * L.
+// Reason: a face that is planar only to round-off (nearly coplanar hull
+// facets; points rounded far from the origin, about 1e-16 of the offset,
+// 1e-8 L at an offset of 1e8 L) has vertices below the support value by more
+// than the tie tolerance. a is a point of A and b lies within about 2 delta
+// of B. The search uses the same widening before it accepts a face with a
+// tie, or nearly one (support gap or arc margin below kContactTieMaxRel), as
+// the exit face: faces hidden by a too narrow tie set are evaluated too.
+// Dimensionless.
+inline constexpr double kContactTieGrowth = 10.0;
+inline constexpr double kContactTieMaxRel = 1e-6;
+
+// An EE face of M whose two edges have a sine below this between them has a
+// normal known only to about 1e-16 / sine (relative): the search then takes
+// its offset from the support values of A and B along that normal (two
+// support queries) instead of from the edges' points, so that the plane
+// still bounds M. Above it the normal's error is below 1e-10, within the
+// touching tolerance. Dimensionless.
+inline constexpr double kEdgeEdgeWellConditionedSin = 1e-6;
+
 // Iteration cap of the 2D portal refinement that finds the centre of duality.
 // On a polytope it terminates in at most (vertices of the projection) steps;
 // the cap only guards against non-termination from round-off.

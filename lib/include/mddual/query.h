@@ -94,8 +94,17 @@ struct SearchStats {
 /// outward unit normal of the face of M that the line hits: it points from A
 /// toward B, A lies in the half-space normal_W . x <= normal_W . point_W and B
 /// (translated by t u) in the other one. point_W is a point of A that B
-/// (translated by t u) touches. feature_a / feature_b are the features of A and
-/// B that meet there (for an EE contact: an edge of each).
+/// (translated by t u) touches, whatever the kind of contact (FV, VF, EE): it
+/// is on A (to round-off), and on B within the touching tolerance
+/// (defaults::kTouchRel times the pair's length scale) or, where the touching
+/// faces are planar only to round-off, within twice that non-planarity (at
+/// most 2 defaults::kContactTieMaxRel times the scale). When the touching
+/// features are larger than a vertex on both sides (face to face, edge to
+/// face, parallel edges) they meet in a patch, and point_W is some point of
+/// that patch, not a particular one (not its centre). feature_a / feature_b
+/// are the features of A and B that name the face of M hit (for an EE
+/// contact: an edge of each); for a patch, e.g. A's face and one vertex of
+/// B's touching face.
 struct Contact {
   double t = std::numeric_limits<double>::quiet_NaN();
   Eigen::Vector3d normal_W = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());

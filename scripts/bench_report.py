@@ -68,7 +68,7 @@ def load(db_path):
                              % (db_path, needed))
     wanted = ["time", "solved", "approximate_solution", "state_checks", "motion_checks", "pair_queries",
               "checking_time", "invalid_solution", "verified", "invalid_raw_solution", "verification_error",
-              "run_index"]
+              "run_index", "memory", "verification_time", "verification_mdd_time", "verification_fcl_time"]
     present = [c for c in wanted if c in run_cols]
     query = ("select e.config, e.checker, e.timelimit, p.name, %s from runs r "
              "join experiments e on r.experimentid = e.id join plannerConfigs p on r.plannerid = p.id"

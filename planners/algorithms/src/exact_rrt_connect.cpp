@@ -2,6 +2,8 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/goals/GoalSampleableRegion.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/tools/config/SelfConfig.h>
 
@@ -17,6 +19,8 @@ ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planne
   Planner::declareParam<double>("range", this, &ExactRRTConnect::setRange, &ExactRRTConnect::getRange, "0.:1.:10000.");
   Planner::declareParam<double>("min_progress", this, &ExactRRTConnect::setMinProgress,
                                 &ExactRRTConnect::getMinProgress, "0.:1e-6:0.1");
+  Planner::declareParam<bool>("rotate_first", this, &ExactRRTConnect::setRotateFirst, &ExactRRTConnect::getRotateFirst,
+                              "0,1");
 }
 
 ExactRRTConnect::~ExactRRTConnect() {
@@ -67,6 +71,46 @@ ExactRRTConnect::Motion* ExactRRTConnect::addMotion(const Tree& tree, Motion* pa
   return m;
 }
 
+bool ExactRRTConnect::rotationInPlace(const ob::State* from, const ob::State* to, ob::State* out) const {
+  if (!rotate_first_) return false;
+  const ob::StateSpace* space = si_->getStateSpace().get();
+  if (dynamic_cast<const ob::SE3StateSpace*>(space) != nullptr) {
+    const auto* f = from->as<ob::SE3StateSpace::StateType>();
+    const auto* t = to->as<ob::SE3StateSpace::StateType>();
+    auto* o = out->as<ob::SE3StateSpace::StateType>();
+    o->setXYZ(f->getX(), f->getY(), f->getZ());
+    o->rotation().x = t->rotation().x;
+    o->rotation().y = t->rotation().y;
+    o->rotation().z = t->rotation().z;
+    o->rotation().w = t->rotation().w;
+    return true;
+  }
+  if (dynamic_cast<const ob::SE2StateSpace*>(space) != nullptr) {
+    const auto* f = from->as<ob::SE2StateSpace::StateType>();
+    const auto* t = to->as<ob::SE2StateSpace::StateType>();
+    auto* o = out->as<ob::SE2StateSpace::StateType>();
+    o->setXY(f->getX(), f->getY());
+    o->setYaw(t->getYaw());
+    return true;
+  }
+  return false;
+}
+
+ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, const ob::State* to, bool* reached) {
+  *reached = false;
+  ob::State* last = si_->allocState();
+  std::pair<ob::State*, double> last_valid(last, 0.0);
+  Motion* added = nullptr;
+  if (si_->checkMotion(from->state, to, last_valid)) {
+    added = addMotion(tree, from, to);
+    *reached = true;
+  } else if (last_valid.second > 0.0 && si_->distance(from->state, last) > min_progress_ * si_->getMaximumExtent()) {
+    added = addMotion(tree, from, last);
+  }
+  si_->freeState(last);
+  return added;
+}
+
 ExactRRTConnect::Extend ExactRRTConnect::extend(const Tree& tree, const ob::State* target, Motion** added) {
   // 1. The nearest motion, and the target cut to `range` when one is set.
   Motion probe;
@@ -80,21 +124,30 @@ ExactRRTConnect::Extend ExactRRTConnect::extend(const Tree& tree, const ob::Stat
     si_->getStateSpace()->interpolate(nearest->state, target, range_ / d, cut);
     goal = cut;
   }
-  // 2. One motion check; when blocked, the validator's last valid state
-  //    before the first contact.
-  ob::State* last = si_->allocState();
-  std::pair<ob::State*, double> last_valid(last, 0.0);
-  Extend result = Extend::kTrapped;
-  if (si_->checkMotion(nearest->state, goal, last_valid)) {
-    *added = addMotion(tree, nearest, goal);
-    result = cut == nullptr ? Extend::kReached : Extend::kAdvanced;
-  } else if (last_valid.second > 0.0 && si_->distance(nearest->state, last) > min_progress_ * si_->getMaximumExtent()) {
-    *added = addMotion(tree, nearest, last);
-    result = Extend::kAdvanced;
+  // 2. SE(2)/SE(3): first the rotation in place to the goal's orientation
+  //    (skipped when there is none to make); a blocked rotation ends the
+  //    extension at its last valid state.
+  Motion* from = nearest;
+  bool reached = false;
+  ob::State* turned = si_->allocState();
+  bool blocked = false;
+  if (rotationInPlace(nearest->state, goal, turned) && si_->distance(nearest->state, turned) > 0.0 &&
+      si_->distance(turned, goal) > 0.0) {
+    Motion* m = edge(tree, nearest, turned, &reached);
+    if (m != nullptr) from = m;
+    blocked = !reached;
   }
-  si_->freeState(last);
+  si_->freeState(turned);
+  // 3. The (remaining) edge to the goal: one motion check; when blocked, the
+  //    validator's last valid state before the first contact.
+  if (!blocked) {
+    Motion* m = edge(tree, from, goal, &reached);
+    if (m != nullptr) from = m;
+  }
   if (cut != nullptr) si_->freeState(cut);
-  return result;
+  if (from == nearest) return Extend::kTrapped;
+  *added = from;
+  return reached && !blocked && cut == nullptr ? Extend::kReached : Extend::kAdvanced;
 }
 
 ob::PlannerStatus ExactRRTConnect::solve(const ob::PlannerTerminationCondition& ptc) {

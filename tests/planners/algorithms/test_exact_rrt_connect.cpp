@@ -8,6 +8,7 @@
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/util/RandomNumbers.h>
 
@@ -106,6 +107,94 @@ TEST(ExactRRTConnect, RangeLimitsExtensions) {
     }
   }
   EXPECT_LE(longer, 1);
+}
+
+/// SE(2): a rod of half length 0.6 centred at the state, along its heading,
+/// in [0,10]^2 with the wall and gap of makeSetup(): free when 25 points of
+/// the rod are (the test's own check, also used densely on the path).
+bool rodFree(const ob::State* s) {
+  const auto* q = s->as<ob::SE2StateSpace::StateType>();
+  for (int k = -12; k <= 12; ++k) {
+    const double x = q->getX() + 0.05 * k * std::cos(q->getYaw());
+    const double y = q->getY() + 0.05 * k * std::sin(q->getYaw());
+    if (x < 0.0 || x > 10.0 || y < 0.0 || y > 10.0) return false;
+    if (x >= 4.9 && x <= 5.1 && !(y >= 8.0 && y <= 9.0)) return false;
+  }
+  return true;
+}
+
+TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
+  ompl::RNG::setSeed(11);
+  auto space = std::make_shared<ob::SE2StateSpace>();
+  ob::RealVectorBounds bounds(2);
+  bounds.setLow(0.0);
+  bounds.setHigh(10.0);
+  space->setBounds(bounds);
+  og::SimpleSetup ss(space);
+  ss.setStateValidityChecker(rodFree);
+  ss.getSpaceInformation()->setStateValidityCheckingResolution(0.0005);
+  ob::ScopedState<ob::SE2StateSpace> start(space), goal(space);
+  start->setXY(1.0, 1.0);
+  start->setYaw(0.0);  // the rod along x: it must turn to pass the 1 m gap
+  goal->setXY(9.0, 1.0);
+  goal->setYaw(0.0);
+  ss.setStartAndGoalStates(start, goal);
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  ASSERT_TRUE(planner->getRotateFirst());
+  ss.setPlanner(planner);
+  ASSERT_EQ(ss.solve(10.0), ob::PlannerStatus::EXACT_SOLUTION);
+  const og::PathGeometric& path = ss.getSolutionPath();
+  int rotations = 0, translations = 0;
+  for (unsigned i = 0; i + 1 < path.getStateCount(); ++i) {
+    const auto* a = path.getState(i)->as<ob::SE2StateSpace::StateType>();
+    const auto* b = path.getState(i + 1)->as<ob::SE2StateSpace::StateType>();
+    const bool same_position = a->getX() == b->getX() && a->getY() == b->getY();
+    const bool same_heading = a->getYaw() == b->getYaw();
+    // Every segment is a rotation in place or a pure translation (the
+    // joining edge of CONNECT included).
+    EXPECT_TRUE(same_position || same_heading) << "segment " << i;
+    rotations += same_position && !same_heading;
+    translations += same_heading && !same_position;
+    ob::State* s = ss.getSpaceInformation()->allocState();
+    for (int k = 0; k <= 2000; ++k) {
+      space->interpolate(path.getState(i), path.getState(i + 1), k / 2000.0, s);
+      EXPECT_TRUE(rodFree(s)) << "segment " << i << " at " << k / 2000.0;
+    }
+    ss.getSpaceInformation()->freeState(s);
+  }
+  EXPECT_GT(rotations, 0);
+  EXPECT_GT(translations, 0);
+}
+
+TEST(ExactRRTConnect, RotateFirstOffKeepsStraightEdges) {
+  ompl::RNG::setSeed(11);
+  auto space = std::make_shared<ob::SE2StateSpace>();
+  ob::RealVectorBounds bounds(2);
+  bounds.setLow(0.0);
+  bounds.setHigh(10.0);
+  space->setBounds(bounds);
+  og::SimpleSetup ss(space);
+  ss.setStateValidityChecker(rodFree);
+  ob::ScopedState<ob::SE2StateSpace> start(space), goal(space);
+  start->setXY(1.0, 1.0);
+  start->setYaw(0.0);
+  goal->setXY(2.0, 3.0);
+  goal->setYaw(1.0);
+  ss.setStartAndGoalStates(start, goal);
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  planner->params().setParam("rotate_first", "0");
+  EXPECT_FALSE(planner->getRotateFirst());
+  ss.setPlanner(planner);
+  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  // Straight edges: some segment turns and moves at once.
+  const og::PathGeometric& path = ss.getSolutionPath();
+  int mixed = 0;
+  for (unsigned i = 0; i + 1 < path.getStateCount(); ++i) {
+    const auto* a = path.getState(i)->as<ob::SE2StateSpace::StateType>();
+    const auto* b = path.getState(i + 1)->as<ob::SE2StateSpace::StateType>();
+    mixed += (a->getX() != b->getX() || a->getY() != b->getY()) && a->getYaw() != b->getYaw();
+  }
+  EXPECT_GT(mixed, 0);
 }
 
 }  // namespace

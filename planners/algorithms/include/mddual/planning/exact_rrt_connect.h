@@ -12,9 +12,22 @@
 // DiscreteMotionValidator does, at its resolution), which is how it runs in
 // the benchmark beside OMPL's planners with every checker.
 //
+// Rotate, then translate (SE(2) and SE(3), issue 9 item 7): on OMPL's
+// SE2StateSpace and SE3StateSpace an extension from q to a target t is two
+// edges: a rotation in place (q's position, t's orientation) and then a pure
+// translation to t. Under OMPL's interpolation (position linear, orientation
+// slerp) the first edge keeps the position and the second the orientation, so
+// the path OMPL executes is exactly the one checked; the translation edge is
+// one exact sweep with MDD-DUAL (first contact = lastValid), and the rotation
+// in place sweeps less volume than a rotation combined with a long
+// translation. A blocked rotation keeps its part up to lastValid and ends the
+// extension there. Other spaces extend along the straight edge as before.
+//
 // Parameters (ompl::base::ParamSet): "range" (0 = unlimited, the default:
 // extensions are only limited by contact), "min_progress" (fraction of the
-// space's maximum extent below which a blocked extension adds nothing).
+// space's maximum extent below which a blocked extension adds nothing),
+// "rotate_first" (1, the default: the two-edge extension where the space
+// allows it; 0: straight edges everywhere).
 #pragma once
 
 #include <memory>
@@ -41,6 +54,8 @@ class ExactRRTConnect : public ompl::base::Planner {
   double getRange() const { return range_; }
   void setMinProgress(double fraction) { min_progress_ = fraction; }
   double getMinProgress() const { return min_progress_; }
+  void setRotateFirst(bool rotate_first) { rotate_first_ = rotate_first; }
+  bool getRotateFirst() const { return rotate_first_; }
 
  private:
   struct Motion {
@@ -54,6 +69,12 @@ class ExactRRTConnect : public ompl::base::Planner {
   /// Grows `tree` from its nearest motion toward `target`; the new motion, if
   /// any, is stored in *added.
   Extend extend(const Tree& tree, const ompl::base::State* target, Motion** added);
+  /// One edge from `from` toward `to` (one motion check; when blocked, up to
+  /// lastValid if that is progress): the motion added, or nullptr.
+  Motion* edge(const Tree& tree, Motion* from, const ompl::base::State* to, bool* reached);
+  /// Writes `from`'s position with `to`'s orientation to `out`; false when
+  /// the space is not SE(2) or SE(3) (or rotate_first is off).
+  bool rotationInPlace(const ompl::base::State* from, const ompl::base::State* to, ompl::base::State* out) const;
   Motion* addMotion(const Tree& tree, Motion* parent, const ompl::base::State* state);
   void freeTree(const Tree& tree);
   double distance(const Motion* a, const Motion* b) const;
@@ -63,6 +84,7 @@ class ExactRRTConnect : public ompl::base::Planner {
   ompl::base::StateSamplerPtr sampler_;
   double range_ = 0.0;
   double min_progress_ = 1e-6;
+  bool rotate_first_ = true;
   std::pair<ompl::base::State*, ompl::base::State*> connection_{nullptr, nullptr};
 };
 

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""The README's mesh-config results (issue 9), from `mddual bench` databases.
+
+Reads <bench>/<config>/bench.db for the mesh configs (bugtrap, twistycool,
+cubicles_mesh, apartment, maze_planar; made by scripts/run-mesh-bench.sh),
+and writes one table: per config and planner, success, median planning time
+(runs without a verified solution count at the time limit), MDD's median over
+FCL discrete's, the longest run against the limit (does a run end near its
+limit?), invalid solutions, median peak memory, and the median verification
+time per solved run; then the issue's targets with their verdicts as measured.
+The text replaces what lies between `<!-- mesh-results:begin -->` and
+`<!-- mesh-results:end -->` in README.md (--readme), or goes to standard output.
+
+    scripts/mesh_results.py [--bench out/bench-mesh] [--readme README.md] [--command TEXT]
+"""
+
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_report  # noqa: E402
+import readme_markers  # noqa: E402
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+CONFIGS = ["bugtrap", "twistycool", "cubicles_mesh", "apartment", "maze_planar"]
+CHECKERS = ["mdd", "fcl"]
+BEGIN, END = "<!-- mesh-results:begin -->", "<!-- mesh-results:end -->"
+
+
+def pair(values, fn):
+    return " / ".join(fn(v) if v is not None else "-" for v in values)
+
+
+def median_of(rows, key):
+    vals = [r[key] for r in rows if r.get(key) is not None]
+    return bench_report.median(vals) if vals else None
+
+
+def overview(bench_dir, command):
+    lines = ["| config (runs x limit) | planner | success mdd / fcl | median time (s) mdd / fcl | mdd / FCL | "
+             "longest run / limit mdd / fcl | invalid mdd / fcl | memory (MB) mdd / fcl | verification (s) mdd / fcl |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    verdicts, overruns, mdd_invalid, found = [], [], 0, []
+    for c in CONFIGS:
+        db = os.path.join(bench_dir, c, "bench.db")
+        if not os.path.exists(db):
+            continue
+        found.append(c)
+        rows = bench_report.load(db)
+        stats = bench_report.summarise(rows)
+        planners = sorted({k[1] for k in stats if k[0] == c})
+        for p in planners:
+            st = [stats.get((c, p, k)) for k in CHECKERS]
+            group = [[r for r in rows if r["planner"] == p and r["checker"] == k] for k in CHECKERS]
+            limit = rows[0]["timelimit"]
+            longest = [max((r["time"] for r in g if r.get("time") is not None), default=None) for g in group]
+            solved = [[r for r in g if bench_report.exact(r)] for g in group]
+            lines.append("| %s, %d x %gs | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                c, max(len(g) for g in group), limit, p,
+                pair(st, lambda s: "%.0f%%" % (100 * s["success"])),
+                pair(st, lambda s: bench_report.fmt(s["median_time"])),
+                bench_report.fmt(st[0]["ratio"], 2) if st[0] and st[0].get("ratio") is not None else "-",
+                pair(longest, lambda t: "%.2f" % (t / limit)),
+                pair(st, lambda s: str(s["invalid"])),
+                pair([median_of(g, "memory") for g in group], lambda m: "%.0f" % m),
+                pair([median_of(g, "verification_time") for g in solved], lambda t: bench_report.fmt(t))))
+            mdd, fcl = st
+            if mdd:
+                mdd_invalid += mdd["invalid"]
+            if mdd and fcl:
+                met = mdd["ratio"] is not None and mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
+                verdicts.append("%s %s: %s / %s s (ratio %s), success %.0f%% / %.0f%%: %s" % (
+                    c, p, bench_report.fmt(mdd["median_time"]), bench_report.fmt(fcl["median_time"]),
+                    bench_report.fmt(mdd["ratio"], 2) if mdd["ratio"] is not None else "-",
+                    100 * mdd["success"], 100 * fcl["success"], "met" if met else "missed"))
+            for k, t in zip(CHECKERS, longest):
+                if t is not None and t > 1.1 * limit:
+                    overruns.append("%s %s %s: %.1f s for %g s" % (c, p, k, t, limit))
+    if not found:
+        raise SystemExit("mesh_results: no %s/<config>/bench.db (run scripts/run-mesh-bench.sh)" % bench_dir)
+    text = ["Made by `scripts/mesh_results.py --readme README.md` from `%s`. FCL is OMPL's discrete motion "
+            "validator at the default resolution with FCL's collide(); every solution verified (exact MDD edge "
+            "check + dense FCL check); a run without a verified solution counts at the time limit." % command, ""]
+    text += lines + [""]
+    n_met = sum(v.endswith(": met") for v in verdicts)
+    text.append("Targets as measured:")
+    text.append("")
+    text.append("- median planning time at most half of FCL discrete's at the same or better success: met in %d of "
+                "%d (config, planner) groups:" % (n_met, len(verdicts)))
+    text += ["  - " + v for v in verdicts]
+    text.append("- zero invalid solutions from the MDD checker: %d invalid (%s)"
+                % (mdd_invalid, "met" if mdd_invalid == 0 else "missed"))
+    text.append("- every run ends within its limit + 10%%: %s" % (
+        "met" if not overruns else "missed (" + "; ".join(overruns) + ")"))
+    return "\n".join(text) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-mesh"))
+    parser.add_argument("--readme", help="replace the text between the mesh-results markers in this file")
+    parser.add_argument("--command", default="./scripts/run-mesh-bench.sh")
+    args = parser.parse_args()
+    text = overview(args.bench, args.command)
+    if not args.readme:
+        sys.stdout.write(text)
+        return
+    readme_markers.replace_between(args.readme, BEGIN, END, text, "mesh_results")
+
+
+if __name__ == "__main__":
+    main()

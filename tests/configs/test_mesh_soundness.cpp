@@ -62,7 +62,7 @@ std::ostream& operator<<(std::ostream& out, const SoundnessConfig& c) {
 }
 const std::vector<SoundnessConfig> kSoundnessConfigs = {
     {"bugtrap", 100, 20},       {"twistycool", 100, 20},
-    {"cubicles_mesh", 100, 20}, {"apartment", 10, 4},  // the dense check's FCL distances are slow (above)
+    {"cubicles_mesh", 100, 20}, {"apartment", 20, 2},  // the dense check's FCL distances are slow (above)
     {"maze_planar", 100, 20},
 };
 /// Least share of colliding and of free edges of each kind: below it, the
@@ -253,6 +253,47 @@ TEST_P(MeshSoundness, DenseCheckPremiseHalfFclDistanceIsALowerBound) {
 
 INSTANTIATE_TEST_SUITE_P(Configs, MeshSoundness, ::testing::ValuesIn(kSoundnessConfigs),
                          [](const ::testing::TestParamInfo<SoundnessConfig>& p) { return p.param.name; });
+
+// ---- Pinned edges ------------------------------------------------------------
+
+/// The SE(2) state at (x, y) with the orientation of the quaternion (qw, 0, 0,
+/// qz), as checkEdge prints it.
+void planarState(const Fixture& fx, double x, double y, double qw, double qz, ob::State* state) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(x, y, 0);
+  X.linear() = Eigen::Quaterniond(qw, 0, 0, qz).normalized().toRotationMatrix();
+  fx.space->setPose(X, state);
+}
+
+// Found by the 10,000-edge sweep on maze_planar (MDDUAL_PLANNING_SCALE=50,
+// edge 2,588; 6 such edges in 5,000 translating ones): a translation edge's
+// first contact 0.0247 of the edge (3.4 cm) early after an earlier edge (1,708)
+// left a warm start on the same pair of triangles (robot 26, world 260). The
+// core's toi() with that warm start is wrong (pinned in tests/lib/
+// test_query_regressions.cpp, QueryRegressions.
+// DISABLED_WarmStartFromAnotherPoseKeepsTheToi). Conservative (no miss) but
+// not exact. Not yet fixed, hence DISABLED_.
+TEST(MeshSoundnessRegressions, DISABLED_WarmStartFromAnEarlierEdgeKeepsTheFirstContact) {
+  const examples::ExampleScene scene = testing::configScene("maze_planar");
+  const Fixture cold = testing::makeFixture(scene);  // its own warm-start tables
+  const Fixture fx = testing::makeFixture(scene);
+  ob::ScopedState<> a1(fx.space->stateSpace()), a2(fx.space->stateSpace());
+  ob::ScopedState<> b1(fx.space->stateSpace()), b2(fx.space->stateSpace());
+  planarState(fx, 10.919814241864696, 13.767155869968731, 0.98980246348703427, 0.14244677348047707, a1.get());
+  planarState(fx, 12.347671389794497, 14.681518567917976, 0.98980246348703427, 0.14244677348047707, a2.get());
+  planarState(fx, 10.926912118014048, 14.390465041027468, 0.99583697635839641, -0.091152161342266808, b1.get());
+  planarState(fx, 12.285377548413098, 14.191906232461847, 0.99583697635839641, -0.091152161342266808, b2.get());
+  const EdgeContact expected = cold.mdd_motion->firstInvalid(b1.get(), b2.get());
+  ASSERT_TRUE(expected.collides);
+  EXPECT_NEAR(expected.fraction, 0.52634684687386346, 1e-9);
+  // The reference: FCL finds the robot free just before it and colliding
+  // just after it.
+  EXPECT_TRUE(testing::fclValidAt(fx, b1.get(), b2.get(), expected.fraction - 1e-9));
+  EXPECT_FALSE(testing::fclValidAt(fx, b1.get(), b2.get(), expected.fraction + 1e-6));
+  fx.mdd_motion->firstInvalid(a1.get(), a2.get());
+  const EdgeContact after = fx.mdd_motion->firstInvalid(b1.get(), b2.get());
+  EXPECT_NEAR(after.fraction, expected.fraction, 1e-9);  // measured: 0.50165499203092101
+}
 
 }  // namespace
 }  // namespace mddual::planning

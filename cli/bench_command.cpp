@@ -537,7 +537,12 @@ void runBenchCommand(const BenchFlags& f) {
 
   Progress progress(problem.name, static_cast<int>(options.checkers.size()));
   mp::BenchObserver observer;
-  observer.checker_started = [&](mp::CheckerKind k, int i, int) { progress.checker(k, i); };
+  // The scene summary once the runs start (after runBench has checked the
+  // flags, whose errors are one line): pieces, meshes, hollow soups.
+  observer.checker_started = [&](mp::CheckerKind k, int i, int) {
+    if (i == 0) std::cerr << "bench: scene: " << scene::sceneSummary(*problem.scene) << "\n";
+    progress.checker(k, i);
+  };
   observer.planner_started = [&](mp::CheckerKind, const std::string& name, int i, int n, int runs) {
     progress.planner(name, i, n, runs);
   };

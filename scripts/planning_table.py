@@ -11,6 +11,10 @@ MDD's, and MDD's pair queries per edge) between the markers
 to standard output.
 
     scripts/planning_table.py [--input out/bench-planning.md] [--readme README.md]
+        [--marker planning] [--command "./scripts/run-planning-bench.sh"]
+
+--marker names the README block (`<!-- NAME:begin -->` ... `<!-- NAME:end -->`):
+`planning` for the example scenes, `planning-mesh` for the mesh configs.
 """
 
 import argparse
@@ -22,7 +26,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import readme_markers  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-BEGIN, END = "<!-- planning:begin -->", "<!-- planning:end -->"
 
 
 def parse(text):
@@ -45,18 +48,19 @@ def parse(text):
     return header.groups(), scenes
 
 
-def table(parsed):
+def table(parsed, command):
     (seed, states, edges, passes), scenes = parsed
-    out = ["Made by `scripts/planning_table.py --readme README.md` from `./scripts/run-planning-bench.sh` "
+    out = ["Made by `scripts/planning_table.py` from `%s` "
            "(seed %s, %s random states and %s random edges per kind and scene, fastest of %s passes)." %
-           (seed, states, edges, passes), "",
+           (command, seed, states, edges, passes), "",
            "| scene | state check MDD / FCL (us) | FCL / MDD | edges | MDD (us) | OMPL discrete + FCL (us) | "
            "discrete / MDD: all | valid only / invalid only | FCL CCD CA (us) | CA answers != MDD | pair queries |",
            "|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, (t_mdd, t_fcl, ratio), rows in scenes:
         for r in rows:
-            out.append("| %s | %s / %s | %sx | %s | %s | %s | %s | %s | %s | %s of %s | %s |" % (
-                name, t_mdd, t_fcl, ratio, r[0], r[2], r[5], r[7], r[8], r[11], r[12], edges, r[3]))
+            differs = "-" if r[12] == "-" else "%s of %s" % (r[12], edges)
+            out.append("| %s | %s / %s | %sx | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+                name, t_mdd, t_fcl, ratio, r[0], r[2], r[5], r[7], r[8], r[11], differs, r[3]))
     return "\n".join(out) + "\n"
 
 
@@ -64,13 +68,17 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--input", default=os.path.join(ROOT, "out", "bench-planning.md"))
     parser.add_argument("--readme", help="replace the text between the planning markers in this file")
+    parser.add_argument("--marker", default="planning", help="name of the README block (default: planning)")
+    parser.add_argument("--command", default="./scripts/run-planning-bench.sh",
+                        help="the command that made the input, quoted in the table's first line")
     args = parser.parse_args()
     with open(args.input) as f:
-        text = table(parse(f.read()))
+        text = table(parse(f.read()), args.command)
     if not args.readme:
         sys.stdout.write(text)
         return
-    readme_markers.replace_between(args.readme, BEGIN, END, text, "planning_table")
+    begin, end = "<!-- %s:begin -->" % args.marker, "<!-- %s:end -->" % args.marker
+    readme_markers.replace_between(args.readme, begin, end, text, "planning_table")
 
 
 if __name__ == "__main__":

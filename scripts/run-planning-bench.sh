@@ -3,8 +3,12 @@
 # motion check, MDD-DUAL against FCL (OMPL's discrete validator at the default
 # resolution, and FCL's continuous collision), with pair queries per check.
 # Builds Release in build-bench/ and writes out/bench-planning.md (about a
-# minute on the 2-core development machine, plus the build); without arguments
-# it also rewrites the planning table of README.md (scripts/planning_table.py).
+# minute on the 2-core development machine, plus the build) and, for the mesh
+# configs (configs/{bugtrap,twistycool,cubicles_mesh,apartment,maze_planar}),
+# out/bench-planning-mesh.md (fewer states and edges, thread CPU time, no FCL
+# continuous validators: about 10 minutes); without arguments it also rewrites
+# the planning tables of README.md (scripts/planning_table.py). With arguments,
+# they are passed to the example-scene run only and the mesh run is skipped.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${MDDUAL_BENCH_BUILD_DIR:-$root/build-bench}"
@@ -14,7 +18,13 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMDDUAL_BUILD_BENCHMARK
   -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=ON >/dev/null
 cmake --build "$build" -j2 --target mddual_bench_planning
 "$build/benchmarks/planning/mddual_bench_planning" "$@" | tee "$out/bench-planning.md"
-# The README's table, from a run with the default sizes only.
+# The README's tables, from a run with the default sizes only.
 if [ $# -eq 0 ]; then
   python3 "$root/scripts/planning_table.py" --input "$out/bench-planning.md" --readme "$root/README.md"
+  mesh_args=(--states 2000 --edges 200 --passes 1 --cpu --no-ccd)
+  configs=()
+  for c in bugtrap twistycool cubicles_mesh apartment maze_planar; do configs+=(--config "$root/configs/$c/$c.cfg"); done
+  "$build/benchmarks/planning/mddual_bench_planning" "${mesh_args[@]}" "${configs[@]}" | tee "$out/bench-planning-mesh.md"
+  python3 "$root/scripts/planning_table.py" --input "$out/bench-planning-mesh.md" --readme "$root/README.md" \
+    --marker planning-mesh --command "./scripts/run-planning-bench.sh (mesh configs: mddual_bench_planning ${mesh_args[*]} --config ...)"
 fi

@@ -6,6 +6,12 @@
 // check. Prints Markdown tables.
 //
 //   mddual_bench_planning [--quick] [--states N] [--edges N] [--passes P] [--seed S] [--scene NAME] [--cpu]
+//                         [--config FILE.cfg ...] [--no-ccd]
+//
+// Scenes: the built-in example scenes, or (--config, repeatable) the SE(2)
+// and SE(3) scenes of benchmark configs, loaded as `mddual bench` loads them.
+// --no-ccd leaves out FCL's continuous validators (minutes per row on the
+// large mesh configs).
 //
 // Timing: each checker runs the same list of states (or edges) `passes` times
 // in one thread; a row reports the fastest pass's mean time per check (the
@@ -29,6 +35,7 @@
 #include <ctime>
 #include <functional>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,6 +43,7 @@
 #include "mddual/planning/example_scenes.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/mdd_checkers.h"
+#include "mddual/planning/problem_setup.h"
 
 namespace {
 
@@ -49,8 +57,10 @@ struct Options {
   int edges = 2000;
   int passes = 3;
   std::uint64_t seed = 1;
-  std::string only;  ///< run only the scene of this name
-  bool cpu = false;  ///< time with the thread's CPU clock
+  std::string only;                  ///< run only the scene of this name
+  bool cpu = false;                  ///< time with the thread's CPU clock
+  std::vector<std::string> configs;  ///< benchmark configs to load instead of the example scenes
+  bool ccd = true;                   ///< time FCL's continuous validators too
 };
 
 /// Set from --cpu: timePerItem reads the thread's CPU clock.
@@ -246,7 +256,7 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
       for (const auto& e : edges) {
         const bool v = s.mdd_motion->checkMotion(e.first.get(), e.second.get());
         (v ? valid_edges : invalid_edges).push_back(e);
-        ca_differs += v != ca.checkMotion(e.first.get(), e.second.get());
+        if (opt.ccd) ca_differs += v != ca.checkMotion(e.first.get(), e.second.get());
       }
       s.mdd_motion->resetCounts();
       s.fcl_checker->resetCounts();
@@ -261,24 +271,44 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
       const double m_disc_mdd = timePerItem(n, opt.passes, [&] {
         for (const auto& e : edges) sink += s.mdd_discrete_si->checkMotion(e.first.get(), e.second.get());
       });
-      const double m_naive = timePerItem(n, opt.passes, [&] {
+      const double m_naive = !opt.ccd ? 0.0 : timePerItem(n, opt.passes, [&] {
         for (const auto& e : edges) sink += naive.checkMotion(e.first.get(), e.second.get());
       });
-      const double m_ca = timePerItem(n, opt.passes, [&] {
+      const double m_ca = !opt.ccd ? 0.0 : timePerItem(n, opt.passes, [&] {
         for (const auto& e : edges) sink += ca.checkMotion(e.first.get(), e.second.get());
       });
       const double checks = static_cast<double>(c.motion_checks);
+      const std::string naive_text = opt.ccd ? us(m_naive) + " us" : "-";
+      const std::string ca_text = opt.ccd ? us(m_ca) + " us" : "-";
+      const std::string ca_differs_text = opt.ccd ? std::to_string(ca_differs) : "-";
       std::printf(
-          "| %s, %s | %.0f%% | %s us | %.1f | %.1f | %s us | %.1f | **%.1fx** | %.1fx / %.1fx | %s us | %s us | %s us "
-          "| %d |\n",
+          "| %s, %s | %.0f%% | %s us | %.1f | %.1f | %s us | %.1f | **%.1fx** | %.1fx / %.1fx | %s us | %s | %s "
+          "| %s |\n",
           rotate ? "rotating" : "translation", full_range ? "length = range" : "length <= range",
           100.0 * static_cast<double>(valid_edges.size()) / n, us(m_mdd).c_str(),
           static_cast<double>(c.pair_queries) / checks, static_cast<double>(c.sub_edges) / checks, us(m_disc).c_str(),
-          states_per_edge, m_disc / m_mdd, v_ratio, i_ratio, us(m_disc_mdd).c_str(), us(m_naive).c_str(),
-          us(m_ca).c_str(), ca_differs);
+          states_per_edge, m_disc / m_mdd, v_ratio, i_ratio, us(m_disc_mdd).c_str(), naive_text.c_str(),
+          ca_text.c_str(), ca_differs_text.c_str());
     }
   }
   if (sink == 42) std::printf(" ");
+}
+
+/// The scene of a benchmark config (SE(2) or SE(3): the example scenes carry
+/// no fixed orientation for the translation-only kinds).
+mddual::planning::examples::ExampleScene configScene(const std::string& cfg) {
+  const mp::Problem problem = mp::loadProblem(cfg);
+  mddual::planning::examples::ExampleScene scene;
+  scene.name = problem.name;
+  scene.robot = problem.robot();
+  scene.world = problem.world();
+  scene.bounds = problem.scene->bounds;
+  scene.kind = mp::toPlanningKind(problem.config.space);
+  if (scene.kind != mp::SpaceKind::kSE2 && scene.kind != mp::SpaceKind::kSE3) {
+    throw std::runtime_error(cfg + ": only SE(2) and SE(3) configs are benchmarked here (the space is " +
+                             mp::toString(scene.kind) + ")");
+  }
+  return scene;
 }
 
 }  // namespace
@@ -310,9 +340,14 @@ int main(int argc, char** argv) {
       opt.cpu = true;
     } else if (a == "--scene" && i + 1 < argc) {
       opt.only = argv[++i];
+    } else if (a == "--config" && i + 1 < argc) {
+      opt.configs.emplace_back(argv[++i]);
+    } else if (a == "--no-ccd") {
+      opt.ccd = false;
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--quick] [--states N] [--edges N] [--passes P] [--seed S] [--scene NAME] [--cpu]\n",
+                   "usage: %s [--quick] [--states N] [--edges N] [--passes P] [--seed S] [--scene NAME] [--cpu] "
+                   "[--config FILE.cfg ...] [--no-ccd]\n",
                    argv[0]);
       return 2;
     }
@@ -323,6 +358,18 @@ int main(int argc, char** argv) {
   std::printf("## Planning checkers: MDD vs FCL (seed %llu, %d states, %d edges per kind, fastest of %d passes, %s)\n",
               static_cast<unsigned long long>(opt.seed), opt.states, opt.edges, opt.passes,
               opt.cpu ? "thread CPU time" : "wall-clock time");
+  if (!opt.configs.empty()) {
+    for (const std::string& cfg : opt.configs) {
+      try {
+        const ex::ExampleScene scene = configScene(cfg);
+        if (opt.only.empty() || opt.only == scene.name) benchScene(scene, opt);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "mddual_bench_planning: %s\n", e.what());
+        return 1;
+      }
+    }
+    return 0;
+  }
   for (const ex::ExampleScene& scene :
        {ex::primitivesScene(opt.seed), ex::meshScene(opt.seed), ex::planarScene(opt.seed), ex::blobScene(opt.seed),
         ex::thinWallScene(0.05), ex::trapScene()}) {

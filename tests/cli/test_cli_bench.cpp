@@ -84,6 +84,7 @@ TEST(CliBench, EndToEnd) {
 
   // Progress: one line per (checker, planner) when standard error is not a terminal.
   EXPECT_NE(run.err.find("bench: tiny | mdd | rrtconnect: 2 runs,"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("bench: scene: robot '"), std::string::npos) << run.err;  // the scene summary
   EXPECT_NE(run.err.find("bench: tiny | fcl-continuous | mdd_rrtconnect: 2 runs,"), std::string::npos) << run.err;
   EXPECT_EQ(run.err.find('\r'), std::string::npos);
 

@@ -69,24 +69,36 @@ TEST(Configs, ThinWallsAreThinnerThanOmplsDefaultResolution) {
 // Each rock of convex_field is one convex piece, as the configs' README says:
 // its OBJ mesh is the triangulated hull of its vertices, so the loader keeps it
 // as one solid kConvex piece, not as a hollow soup of triangles (issue 10: 19
-// rocks with slightly non-planar side faces loaded as soups).
+// rocks with slightly non-planar side faces loaded as soups). The README
+// says more: every face is planar as loaded. So each rock is convex with the
+// round-off allowance alone (mesh_convex_tolerance = 0), not only within the
+// default tolerance, and is closed.
 TEST(Configs, ConvexFieldRocksLoadAsOneConvexPieceEach) {
   constexpr int kRocks = 60;
+  LoadOptions exact;
+  exact.mesh_convex_tolerance = 0.0;
   for (int i = 0; i < kRocks; ++i) {
     const std::string name = std::string("rock_") + (i < 10 ? "0" : "") + std::to_string(i) + ".obj";
     SCOPED_TRACE(name);
-    MeshInfo info;
-    const std::vector<Piece> pieces = meshPieces(kConfigs / "convex_field/meshes" / name, Eigen::Vector3d::Ones(),
-                                                 Eigen::Isometry3d::Identity(), LoadOptions{}, &info);
-    EXPECT_TRUE(info.convex);
-    EXPECT_EQ(info.degenerate_triangles, 0);
-    ASSERT_EQ(pieces.size(), 1u);
-    EXPECT_EQ(pieces[0].kind, PieceKind::kConvex);
+    for (const LoadOptions& options : {LoadOptions{}, exact}) {
+      MeshInfo info;
+      const std::vector<Piece> pieces = meshPieces(kConfigs / "convex_field/meshes" / name, Eigen::Vector3d::Ones(),
+                                                   Eigen::Isometry3d::Identity(), options, &info);
+      EXPECT_TRUE(info.convex);
+      EXPECT_TRUE(info.closed);
+      EXPECT_EQ(info.degenerate_triangles, 0);
+      ASSERT_EQ(pieces.size(), 1u);
+      EXPECT_EQ(pieces[0].kind, PieceKind::kConvex);
+    }
   }
   const ProblemScene scene =
       loadProblemScene(readProblemConfig(kConfigs / "convex_field/convex_field.cfg", {"mdd_rrtconnect"}));
   EXPECT_EQ(scene.world.pieces().size(), static_cast<std::size_t>(kRocks));
   for (const Piece& p : scene.world.pieces()) EXPECT_EQ(p.kind, PieceKind::kConvex) << p.origin;
+  EXPECT_TRUE(scene.warnings.empty());
+  EXPECT_EQ(scene.world_meshes.meshes, kRocks);
+  EXPECT_EQ(scene.world_meshes.convex, kRocks);
+  EXPECT_EQ(scene.world_meshes.closed_soups, 0);
 }
 
 }  // namespace

@@ -342,6 +342,8 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       bool invalid_raw = false;
       bool out_of_bounds = false;
       double verify_seconds = 0.0;
+      double verify_mdd_seconds = 0.0;
+      double verify_fcl_seconds = 0.0;
       std::string error;
       try {
         og::SimpleSetup& ss = setup.simpleSetup();
@@ -369,6 +371,8 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
             const og::PathGeometric& path = ss.getSolutionPath();
             const VerifyResult v = verifier.verify(*setup.planningSpace(), path);
             verify_seconds += v.seconds;
+            verify_mdd_seconds += v.mdd_seconds;
+            verify_fcl_seconds += v.fcl_seconds;
             verified = v.valid;
             invalid = !v.valid;
             invalid_mdd = v.mdd_collision;
@@ -378,6 +382,8 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
             if (cfg.simplify) {
               const VerifyResult vr = verifier.verify(*setup.planningSpace(), raw);
               verify_seconds += vr.seconds;
+              verify_mdd_seconds += vr.mdd_seconds;
+              verify_fcl_seconds += vr.fcl_seconds;
               invalid_raw = !vr.valid;
             }
             const std::string stem = experiment + "-" + planner->getName();
@@ -413,6 +419,8 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       run["invalid by bounds BOOLEAN"] = flag(exact && out_of_bounds);
       if (cfg.simplify) run["invalid raw solution BOOLEAN"] = flag(exact && invalid_raw);
       run["verification time REAL"] = real(verify_seconds);
+      run["verification mdd time REAL"] = real(verify_mdd_seconds);
+      run["verification fcl time REAL"] = real(verify_fcl_seconds);
       log.solved += exact ? 1 : 0;
       log.verified += verified ? 1 : 0;
       log.invalid += invalid ? 1 : 0;

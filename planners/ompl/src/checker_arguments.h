@@ -21,7 +21,9 @@ inline void checkCheckerArguments(const char* who, const char* scene_type, const
   if (!scene) throw InvalidInputError(name + ": the " + scene_type + " is null");
   if (si->getStateSpace() != space->stateSpace()) {
     throw InvalidInputError(name + ": the SpaceInformation's state space is not the PlanningSpace's (" +
-                            si->getStateSpace()->getName() + " vs " + space->stateSpace()->getName() + ")");
+                            si->getStateSpace()->getName() + " vs " + space->stateSpace()->getName() +
+                            "); for a state space made elsewhere, wrap it (PlanningSpace::wrap) or use "
+                            "useExactChecking()");
   }
 }
 

@@ -132,10 +132,19 @@ bool collideCallback(Object* o1, Object* o2, void* cdata) {
 struct DistanceData {
   fcl::DistanceRequest<double> request;
   double min_distance = kInf;
+  /// Skip triangle-mesh against triangle-mesh pairs: FCL computes their
+  /// distance triangle by triangle without GJK, so the second solver's pass
+  /// would repeat the first's answer (on a 3,000 x 40,000 triangle pair that
+  /// was half of the time).
+  bool skip_mesh_pairs = false;
 };
 
 bool distanceCallback(Object* o1, Object* o2, void* cdata, double& dist) {
   auto* data = static_cast<DistanceData*>(cdata);
+  if (data->skip_mesh_pairs && o1->getObjectType() == fcl::OT_BVH && o2->getObjectType() == fcl::OT_BVH) {
+    dist = data->min_distance;
+    return false;
+  }
   fcl::DistanceResult<double> result;
   fcl::distance(o1, o2, data->request, result);
   data->min_distance = std::min(data->min_distance, result.min_distance);
@@ -283,6 +292,7 @@ double FclScene::distance(const Eigen::Isometry3d& X_WR) const {
   for (const fcl::GJKSolverType solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
     DistanceData data;
     data.request.gjk_solver_type = solver;
+    data.skip_mesh_pairs = solver != fcl::GST_LIBCCD;
     for (const auto& object : local->robot) {
       object->setTransform(X_WR);
       object->computeAABB();

@@ -116,7 +116,7 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
   }
   double bounds_exit = kInf;
   if (!si_->satisfiesBounds(s2)) {
-    bounds_exit = space_->boundsExitFraction(motion.p_start, motion.p_end);
+    bounds_exit = space_->boundsExitFraction(s1, s2);
     if (!(bounds_exit <= 1.0)) bounds_exit = 1.0;  // out of bounds otherwise (angle, quaternion norm): s2 only
     if (!first_contact) {
       out.collides = true;

@@ -52,7 +52,7 @@ std::uint64_t pairKey(int set, int robot_piece, int world_piece) {
 
 }  // namespace
 
-std::vector<scene::Piece> enlargePieces(const std::vector<scene::Piece>& pieces, double delta) {
+scene::Piece enlargePiece(const scene::Piece& piece, double delta) {
   // Two polytopes that contain the ball of radius delta: the icosahedron and
   // the cube of inradius delta (the 1e-9 margin absorbs the round-off of the
   // scale). The icosahedron adds less (circumradius 1.26 delta against 1.73),
@@ -61,27 +61,28 @@ std::vector<scene::Piece> enlargePieces(const std::vector<scene::Piece>& pieces,
   // vertices.
   const double ico_scale = delta / icosahedronInradius() * (1.0 + 1e-9);
   const double cube_scale = delta * (1.0 + 1e-9);
+  std::vector<Eigen::Vector3d> points;
+  for (const Eigen::Vector3d& v : piece.polytope.vertices()) {
+    for (const Eigen::Vector3d& q : icosahedron()) points.push_back(v + ico_scale * q);
+  }
+  ConvexPolytope ico = ConvexPolytope::fromPoints(points);
+  points.clear();
+  for (const Eigen::Vector3d& v : piece.polytope.vertices()) {
+    for (int c = 0; c < 8; ++c) {
+      points.push_back(v +
+                       cube_scale * Eigen::Vector3d((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0));
+    }
+  }
+  ConvexPolytope cube = ConvexPolytope::fromPoints(points);
+  const bool use_cube = cube.numVertices() < ico.numVertices();
+  return scene::Piece::make(use_cube ? std::move(cube) : std::move(ico), scene::PieceKind::kConvex,
+                            piece.origin + " (enlarged by " + std::to_string(delta) + ")");
+}
+
+std::vector<scene::Piece> enlargePieces(const std::vector<scene::Piece>& pieces, double delta) {
   std::vector<scene::Piece> out;
   out.reserve(pieces.size());
-  std::vector<Eigen::Vector3d> points;
-  for (const scene::Piece& piece : pieces) {
-    points.clear();
-    for (const Eigen::Vector3d& v : piece.polytope.vertices()) {
-      for (const Eigen::Vector3d& q : icosahedron()) points.push_back(v + ico_scale * q);
-    }
-    ConvexPolytope ico = ConvexPolytope::fromPoints(points);
-    points.clear();
-    for (const Eigen::Vector3d& v : piece.polytope.vertices()) {
-      for (int c = 0; c < 8; ++c) {
-        points.push_back(v + cube_scale *
-                                 Eigen::Vector3d((c & 1) ? 1.0 : -1.0, (c & 2) ? 1.0 : -1.0, (c & 4) ? 1.0 : -1.0));
-      }
-    }
-    ConvexPolytope cube = ConvexPolytope::fromPoints(points);
-    const bool use_cube = cube.numVertices() < ico.numVertices();
-    out.push_back(scene::Piece::make(use_cube ? std::move(cube) : std::move(ico), scene::PieceKind::kConvex,
-                                     piece.origin + " (enlarged by " + std::to_string(delta) + ")"));
-  }
+  for (const scene::Piece& piece : pieces) out.push_back(enlargePiece(piece, delta));
   return out;
 }
 
@@ -103,8 +104,13 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
     throw InvalidInputError("MddScene: refinement_levels " + std::to_string(options.refinement_levels) +
                             " is outside [0, 8]");
   }
+  const std::size_t n = robot_->pieces().size();
   for (int level = 0; level <= options.refinement_levels; ++level) {
-    enlarged_.push_back(enlargePieces(robot_->pieces(), delta_ / std::ldexp(1.0, level)));
+    EnlargedLevel e;
+    e.delta = delta_ / std::ldexp(1.0, level);
+    e.once = std::make_unique<std::once_flag[]>(n);
+    e.pieces = std::make_unique<std::optional<scene::Piece>[]>(n);
+    enlarged_.push_back(std::move(e));
   }
   const auto tree = [](const std::vector<scene::Piece>& pieces) {
     std::vector<const ConvexPolytope*> polytopes;
@@ -127,8 +133,20 @@ int MddScene::subEdgeCount(double angle) const {
   return std::max(1, static_cast<int>(n));
 }
 
-const std::vector<scene::Piece>& MddScene::pieceSet(int set) const {
-  return set == 0 ? robot_->pieces() : enlarged_.at(static_cast<std::size_t>(set - 1));
+const scene::Piece& MddScene::enlargedPiece(int level, int i) const {
+  const EnlargedLevel& e = enlarged_.at(static_cast<std::size_t>(level));
+  const std::size_t k = static_cast<std::size_t>(i);
+  if (i < 0 || k >= robot_->pieces().size()) {
+    throw InvalidInputError("MddScene: robot piece " + std::to_string(i) + " does not exist");
+  }
+  // call_once: one thread builds the piece, the others wait for it; if the
+  // build throws, the flag stays unset and the next caller tries again.
+  std::call_once(e.once[k], [&] { e.pieces[k].emplace(enlargePiece(robot_->pieces()[k], e.delta)); });
+  return *e.pieces[k];
+}
+
+const scene::Piece& MddScene::setPiece(int set, int i) const {
+  return set == 0 ? robot_->pieces().at(static_cast<std::size_t>(i)) : enlargedPiece(set - 1, i);
 }
 
 std::shared_ptr<MddScene::WarmTable> MddScene::warmTable() const {
@@ -151,7 +169,6 @@ bool MddScene::collides(const Eigen::Isometry3d& X_WR, int* pair_queries, PieceC
 }
 
 bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const {
-  const std::vector<scene::Piece>& pieces = pieceSet(set);
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
   int queries = 0;
@@ -159,7 +176,7 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
   forEachOverlappingPair(world_tree_, robot_tree_, X_WR, setMargin(set), [&](int j, int i) {
     IntersectInput in;
     in.a = &world[static_cast<std::size_t>(j)].polytope;
-    in.b = &pieces[static_cast<std::size_t>(i)].polytope;
+    in.b = &setPiece(set, i).polytope;
     in.X_WB = X_WR;
     ++queries;
     if (!intersect(in, warmIn(*table, set, i, j)).intersecting) return true;
@@ -177,7 +194,7 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
 
 void MddScene::sweptCandidates(int set, int piece, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W,
                                double max_distance, std::vector<int>* out) const {
-  const scene::Piece& p = pieceSet(set)[static_cast<std::size_t>(piece)];
+  const scene::Piece& p = setPiece(set, piece);
   Eigen::AlignedBox3d box = scene::transformedBox(p.box, X_WR);
   const double n = v_W.norm();
   if (n > 0.0 && max_distance > 0.0) {
@@ -212,7 +229,6 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   }
   if (!(max_distance >= 0.0)) throw InvalidInputError("MddScene::sweep: max_distance is negative or NaN");
   const Eigen::Vector3d u = v_W / n;
-  const std::vector<scene::Piece>& pieces = pieceSet(set);
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();
   CastOptions options;
@@ -223,7 +239,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   const auto leaf = [&](int j, int i, double limit) {
     DirectionalInput in;
     in.a = &world[static_cast<std::size_t>(j)].polytope;
-    in.b = &pieces[static_cast<std::size_t>(i)].polytope;
+    in.b = &setPiece(set, i).polytope;
     in.X_WB = X_WR;
     in.s_W = u;
     in.max_distance = limit;

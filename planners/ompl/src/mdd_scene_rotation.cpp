@@ -137,7 +137,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     out_leaf.fraction = I.ta;
     out_leaf.contact.robot_piece = i;
     out_leaf.contact.world_piece = j;
-    const ConvexPolytope& enlarged = enlarged_[static_cast<std::size_t>(level)][static_cast<std::size_t>(i)].polytope;
+    const ConvexPolytope& enlarged = enlargedPiece(level, i).polytope;
     const ConvexPolytope& obstacle = world[static_cast<std::size_t>(j)].polytope;
     WarmStart* warm = warmIn(*table, level + 1, i, j);
     ++out->pair_queries;

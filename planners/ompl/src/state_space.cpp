@@ -3,10 +3,14 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
+#include <ompl/base/spaces/SO2StateSpace.h>
+#include <ompl/base/spaces/SO3StateSpace.h>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "mddual/error.h"
 
@@ -31,15 +35,174 @@ std::string str(const Eigen::Vector3d& v) {
   return out.str();
 }
 
-void checkBounds(const Eigen::AlignedBox3d& bounds, int dims) {
+void checkBounds(const Eigen::AlignedBox3d& bounds, int dims, const std::string& who = "PlanningSpace") {
   for (int k = 0; k < dims; ++k) {
     const double lo = bounds.min()[k];
     const double hi = bounds.max()[k];
     if (!std::isfinite(lo) || !std::isfinite(hi) || !(lo < hi)) {
-      throw InvalidInputError("PlanningSpace: position bounds " + str(bounds.min()) + " to " + str(bounds.max()) +
+      throw InvalidInputError(who + ": position bounds " + str(bounds.min()) + " to " + str(bounds.max()) +
                               " are empty or not finite along axis " + std::to_string(k) + " (need min < max)");
     }
   }
+}
+
+/// The first t at which a + t (b - a) leaves [lo, hi] (+inf when b is inside,
+/// with RealVectorStateSpace::satisfiesBounds's epsilon slack).
+double axisExit(double lo, double hi, double a, double b) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double d = b - a;
+  if (d > 0.0 && b - eps > hi) return (hi + eps - a) / d;
+  if (d < 0.0 && b + eps < lo) return (lo - eps - a) / d;
+  return kInf;
+}
+
+// ---- Layouts of user-made spaces (PlanningSpace::wrap) ----------------------------
+
+/// Whether `space` can be a pose part, and of which kind.
+bool poseKindOf(const ob::StateSpace& space, SpaceKind* kind) {
+  if (dynamic_cast<const ob::SE2StateSpace*>(&space)) {
+    *kind = SpaceKind::kSE2;
+    return true;
+  }
+  if (dynamic_cast<const ob::SE3StateSpace*>(&space)) {
+    *kind = SpaceKind::kSE3;
+    return true;
+  }
+  if (const auto* rv = dynamic_cast<const ob::RealVectorStateSpace*>(&space)) {
+    if (rv->getDimension() == 2 || rv->getDimension() == 3) {
+      *kind = rv->getDimension() == 2 ? SpaceKind::kR2 : SpaceKind::kR3;
+      return true;
+    }
+  }
+  return false;
+}
+
+bool rotatingKind(SpaceKind kind) {
+  return kind == SpaceKind::kSE2 || kind == SpaceKind::kSE3;
+}
+
+/// "'name' (what it is)" for messages.
+std::string describe(const ob::StateSpace& space) {
+  std::string what;
+  if (dynamic_cast<const ob::SE2StateSpace*>(&space)) {
+    what = "SE2StateSpace";
+  } else if (dynamic_cast<const ob::SE3StateSpace*>(&space)) {
+    what = "SE3StateSpace";
+  } else if (const auto* rv = dynamic_cast<const ob::RealVectorStateSpace*>(&space)) {
+    what = "RealVectorStateSpace of dimension " + std::to_string(rv->getDimension());
+  } else if (dynamic_cast<const ob::SO2StateSpace*>(&space)) {
+    what = "SO2StateSpace";
+  } else if (dynamic_cast<const ob::SO3StateSpace*>(&space)) {
+    what = "SO3StateSpace";
+  } else if (const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space)) {
+    what = "CompoundStateSpace of " + std::to_string(c->getSubspaceCount()) + " components";
+  } else {
+    what = "state space of OMPL type " + std::to_string(space.getType());
+  }
+  return "'" + space.getName() + "' (" + what + ")";
+}
+
+/// Extra components the motion validator can follow: linear (real vectors,
+/// bounds exits computed) or always within bounds along an edge (SO2: OMPL
+/// normalises the interpolated angle; SO3: the slerp keeps unit norm).
+bool supportedExtra(const ob::StateSpace& space) {
+  if (dynamic_cast<const ob::RealVectorStateSpace*>(&space) || dynamic_cast<const ob::SO2StateSpace*>(&space) ||
+      dynamic_cast<const ob::SO3StateSpace*>(&space)) {
+    return true;
+  }
+  const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space);
+  if (!c || c->getSubspaceCount() == 0) return false;
+  for (unsigned int i = 0; i < c->getSubspaceCount(); ++i) {
+    if (!supportedExtra(*c->getSubspace(i))) return false;
+  }
+  return true;
+}
+
+/// boundsExitFraction over the real-vector coordinates of an extra component.
+double extraExit(const ob::StateSpace& space, const ob::State* s1, const ob::State* s2) {
+  if (const auto* rv = dynamic_cast<const ob::RealVectorStateSpace*>(&space)) {
+    const ob::RealVectorBounds& b = rv->getBounds();
+    const double* a = s1->as<ob::RealVectorStateSpace::StateType>()->values;
+    const double* e = s2->as<ob::RealVectorStateSpace::StateType>()->values;
+    double exit = kInf;
+    for (unsigned int k = 0; k < rv->getDimension(); ++k)
+      exit = std::min(exit, axisExit(b.low[k], b.high[k], a[k], e[k]));
+    return exit;
+  }
+  double exit = kInf;
+  if (const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space)) {
+    const auto* c1 = s1->as<ob::CompoundState>();
+    const auto* c2 = s2->as<ob::CompoundState>();
+    for (unsigned int i = 0; i < c->getSubspaceCount(); ++i) {
+      exit = std::min(exit, extraExit(*c->getSubspace(i), c1->components[i], c2->components[i]));
+    }
+  }
+  return exit;
+}
+
+/// The pose part of a wrapped space: its index (-1: the space itself) and kind.
+std::pair<int, SpaceKind> locatePosePart(const ob::StateSpace& space, const std::string& name) {
+  const std::string who = "PlanningSpace::wrap: state space " + describe(space);
+  SpaceKind kind = SpaceKind::kSE3;
+  if (poseKindOf(space, &kind)) {
+    if (!name.empty()) {
+      throw InvalidInputError(who + " is itself the pose part; pose_subspace '" + name +
+                              "' names a component of a compound space and must be empty here");
+    }
+    return {-1, kind};
+  }
+  const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space);
+  if (!c || c->getSubspaceCount() == 0) {
+    throw InvalidInputError(who +
+                            " is not an SE2, SE3, R^2 or R^3 space (RealVectorStateSpace of dimension 2 or 3), nor a "
+                            "compound space with one of those as a component");
+  }
+  const int n = static_cast<int>(c->getSubspaceCount());
+  auto sub = [&](int i) -> const ob::StateSpace& { return *c->getSubspace(static_cast<unsigned int>(i)); };
+  std::string names;
+  for (int i = 0; i < n; ++i) names += (i ? ", " : "") + describe(sub(i));
+  int index = -1;
+  if (!name.empty()) {
+    for (int i = 0; i < n && index < 0; ++i) {
+      if (sub(i).getName() == name) index = i;
+    }
+    if (index < 0) {
+      throw InvalidInputError(who + " has no direct component named '" + name + "' (components: " + names + ")");
+    }
+    if (!poseKindOf(sub(index), &kind)) {
+      throw InvalidInputError(who + ": the named pose part " + describe(sub(index)) +
+                              " is not an SE2, SE3, R^2 or R^3 space");
+    }
+  } else {
+    if (!poseKindOf(sub(0), &kind)) {
+      for (int i = 1; i < n; ++i) {
+        SpaceKind other;
+        if (poseKindOf(sub(i), &other)) {
+          throw InvalidInputError(who + ": the first component " + describe(sub(0)) +
+                                  " is not a pose part; component " + describe(sub(i)) +
+                                  " could be: name it in SpaceWrapOptions::pose_subspace");
+        }
+      }
+      throw InvalidInputError(
+          who + " has no pose part: no component is an SE2, SE3, R^2 or R^3 space (components: " + names + ")");
+    }
+    for (int i = 1; i < n; ++i) {
+      SpaceKind other;
+      if (poseKindOf(sub(i), &other) && (rotatingKind(other) || !rotatingKind(kind))) {
+        throw InvalidInputError(who + ": the pose part is ambiguous, the first component " + describe(sub(0)) + " or " +
+                                describe(sub(i)) + ": name it in SpaceWrapOptions::pose_subspace");
+      }
+    }
+    index = 0;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (i != index && !supportedExtra(sub(i))) {
+      throw InvalidInputError(who + ": the extra component " + describe(sub(i)) +
+                              " is not a RealVectorStateSpace, SO2StateSpace, SO3StateSpace or a compound of those; "
+                              "the motion validator cannot follow its bounds along an edge");
+    }
+  }
+  return {index, kind};
 }
 
 Eigen::Quaterniond unitQuaternion(const Eigen::Quaterniond& q, const char* what) {
@@ -101,14 +264,7 @@ PlanningSpace::PlanningSpace(SpaceKind kind, const Eigen::AlignedBox3d& bounds, 
     : kind_(kind), bounds_(bounds) {
   position_dims_ = (kind == SpaceKind::kSE2 || kind == SpaceKind::kR2) ? 2 : 3;
   checkBounds(bounds, position_dims_);
-  if (kind == SpaceKind::kR2 || kind == SpaceKind::kR3) {
-    q_fixed_ = unitQuaternion(q_WR, "the fixed orientation");
-    R_fixed_ = q_fixed_.toRotationMatrix();
-  }
-  if (kind == SpaceKind::kR2) {
-    if (!std::isfinite(z)) throw InvalidInputError("PlanningSpace::r2: the fixed z is not finite");
-    z_fixed_ = z;
-  }
+  setFixedPose(z, q_WR);
   ob::RealVectorBounds rb(static_cast<unsigned int>(position_dims_));
   for (int k = 0; k < position_dims_; ++k) {
     rb.setLow(static_cast<unsigned int>(k), bounds.min()[k]);
@@ -137,6 +293,60 @@ PlanningSpace::PlanningSpace(SpaceKind kind, const Eigen::AlignedBox3d& bounds, 
   }
 }
 
+PlanningSpace::PlanningSpace(SpaceKind kind, ob::StateSpacePtr space, int pose_index, const SpaceWrapOptions& options)
+    : kind_(kind), pose_index_(pose_index), space_(std::move(space)) {
+  position_dims_ = (kind == SpaceKind::kSE2 || kind == SpaceKind::kR2) ? 2 : 3;
+  const ob::StateSpace* part = space_.get();
+  if (pose_index_ >= 0)
+    part = space_->as<ob::CompoundStateSpace>()->getSubspace(static_cast<unsigned int>(pose_index_)).get();
+  const ob::RealVectorBounds* rb = nullptr;
+  switch (kind) {
+    case SpaceKind::kSE2: rb = &dynamic_cast<const ob::SE2StateSpace&>(*part).getBounds(); break;
+    case SpaceKind::kSE3: rb = &dynamic_cast<const ob::SE3StateSpace&>(*part).getBounds(); break;
+    case SpaceKind::kR2:
+    case SpaceKind::kR3: rb = &dynamic_cast<const ob::RealVectorStateSpace&>(*part).getBounds(); break;
+  }
+  setFixedPose(options.z, options.q_WR);
+  const double z_extent = kind == SpaceKind::kR2 ? z_fixed_ : 0.0;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(z_extent), hi = Eigen::Vector3d::Constant(z_extent);
+  for (int k = 0; k < position_dims_; ++k) {
+    const auto u = static_cast<std::size_t>(k);
+    lo[k] = u < rb->low.size() ? rb->low[u] : std::numeric_limits<double>::quiet_NaN();
+    hi[k] = u < rb->high.size() ? rb->high[u] : std::numeric_limits<double>::quiet_NaN();
+  }
+  bounds_ = Eigen::AlignedBox3d(lo, hi);
+  checkBounds(bounds_, position_dims_,
+              "PlanningSpace::wrap: state space '" + space_->getName() + "' (pose part '" + part->getName() +
+                  "'; set its bounds before wrapping)");
+}
+
+void PlanningSpace::setFixedPose(double z, const Eigen::Quaterniond& q_WR) {
+  if (kind_ == SpaceKind::kR2 || kind_ == SpaceKind::kR3) {
+    q_fixed_ = unitQuaternion(q_WR, "the fixed orientation");
+    R_fixed_ = q_fixed_.toRotationMatrix();
+  }
+  if (kind_ == SpaceKind::kR2) {
+    if (!std::isfinite(z)) throw InvalidInputError("PlanningSpace::r2: the fixed z is not finite");
+    z_fixed_ = z;
+  }
+}
+
+PlanningSpacePtr PlanningSpace::wrap(const ob::StateSpacePtr& space, const SpaceWrapOptions& options) {
+  if (!space) throw InvalidInputError("PlanningSpace::wrap: the state space is null");
+  const std::pair<int, SpaceKind> part = locatePosePart(*space, options.pose_subspace);
+  return PlanningSpacePtr(new PlanningSpace(part.second, space, part.first, options));
+}
+
+const ob::State* PlanningSpace::poseState(const ob::State* state) const {
+  if (pose_index_ < 0) return state;
+  return state->as<ob::CompoundState>()->components[pose_index_];
+}
+
+ob::State* PlanningSpace::poseState(ob::State* state) const {
+  if (pose_index_ < 0) return state;
+  return state->as<ob::CompoundState>()->components[pose_index_];
+}
+
 PlanningSpacePtr PlanningSpace::make(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z,
                                      const Eigen::Quaterniond& q_WR) {
   return PlanningSpacePtr(new PlanningSpace(kind, bounds, z, q_WR));
@@ -154,7 +364,8 @@ PlanningSpacePtr PlanningSpace::r3(const Eigen::AlignedBox3d& bounds, const Eige
   return make(SpaceKind::kR3, bounds, 0.0, q_WR);
 }
 
-Eigen::Isometry3d PlanningSpace::pose(const ob::State* state) const {
+Eigen::Isometry3d PlanningSpace::pose(const ob::State* full) const {
+  const ob::State* state = poseState(full);
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   switch (kind_) {
     case SpaceKind::kSE2: {
@@ -185,7 +396,8 @@ Eigen::Isometry3d PlanningSpace::pose(const ob::State* state) const {
   return X;
 }
 
-void PlanningSpace::setPose(const Eigen::Isometry3d& X_WR, ob::State* state) const {
+void PlanningSpace::setPose(const Eigen::Isometry3d& X_WR, ob::State* full) const {
+  ob::State* state = poseState(full);
   const Eigen::Vector3d p = X_WR.translation();
   const Eigen::Matrix3d R = X_WR.linear();
   if (!p.allFinite() || !R.allFinite()) throw InvalidInputError("PlanningSpace::setPose: the pose is not finite");
@@ -244,8 +456,8 @@ EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const
   switch (kind_) {
     case SpaceKind::kSE2: {
       // SO2StateSpace::interpolate: the shorter way, |diff| <= pi going forward.
-      const double yaw1 = s1->as<ob::SE2StateSpace::StateType>()->getYaw();
-      const double yaw2 = s2->as<ob::SE2StateSpace::StateType>()->getYaw();
+      const double yaw1 = poseState(s1)->as<ob::SE2StateSpace::StateType>()->getYaw();
+      const double yaw2 = poseState(s2)->as<ob::SE2StateSpace::StateType>()->getYaw();
       double diff = yaw2 - yaw1;
       if (std::abs(diff) > kPi) diff = diff > 0.0 ? diff - 2.0 * kPi : diff + 2.0 * kPi;
       if (std::abs(diff) >= kMinRotationAngle) {
@@ -256,8 +468,8 @@ EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const
       break;
     }
     case SpaceKind::kSE3: {
-      const auto& r1 = s1->as<ob::SE3StateSpace::StateType>()->rotation();
-      const auto& r2 = s2->as<ob::SE3StateSpace::StateType>()->rotation();
+      const auto& r1 = poseState(s1)->as<ob::SE3StateSpace::StateType>()->rotation();
+      const auto& r2 = poseState(s2)->as<ob::SE3StateSpace::StateType>()->rotation();
       m.q_start = toEigen(r1);
       const double dq = rawQuaternion(r1).dot(rawQuaternion(r2));
       // SO3StateSpace's arcLength(): 0 when |dq| > 1 - 1e-9, then interpolate() copies q1.
@@ -292,12 +504,22 @@ bool PlanningSpace::positionInBounds(const Eigen::Vector3d& p) const {
 }
 
 double PlanningSpace::boundsExitFraction(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) const {
-  constexpr double eps = std::numeric_limits<double>::epsilon();
   double exit = kInf;
-  for (int k = 0; k < position_dims_; ++k) {
-    const double d = p2[k] - p1[k];
-    if (d > 0.0 && p2[k] - eps > bounds_.max()[k]) exit = std::min(exit, (bounds_.max()[k] + eps - p1[k]) / d);
-    if (d < 0.0 && p2[k] + eps < bounds_.min()[k]) exit = std::min(exit, (bounds_.min()[k] - eps - p1[k]) / d);
+  for (int k = 0; k < position_dims_; ++k)
+    exit = std::min(exit, axisExit(bounds_.min()[k], bounds_.max()[k], p1[k], p2[k]));
+  return exit == kInf ? kInf : std::max(0.0, exit);
+}
+
+double PlanningSpace::boundsExitFraction(const ob::State* s1, const ob::State* s2) const {
+  double exit = boundsExitFraction(pose(s1).translation(), pose(s2).translation());
+  if (pose_index_ >= 0) {
+    const auto* compound = space_->as<ob::CompoundStateSpace>();
+    const auto* c1 = s1->as<ob::CompoundState>();
+    const auto* c2 = s2->as<ob::CompoundState>();
+    for (unsigned int i = 0; i < compound->getSubspaceCount(); ++i) {
+      if (static_cast<int>(i) == pose_index_) continue;
+      exit = std::min(exit, extraExit(*compound->getSubspace(i), c1->components[i], c2->components[i]));
+    }
   }
   return exit == kInf ? kInf : std::max(0.0, exit);
 }

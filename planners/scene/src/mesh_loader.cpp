@@ -25,9 +25,10 @@ constexpr unsigned int kAssimpFlags = aiProcess_GenNormals | aiProcess_Triangula
 /// A triangle whose doubled area is below this fraction of its longest edge
 /// squared (a height under 1e-10 of its length) is degenerate.
 constexpr double kDegenerateRatio = 1e-10;
-/// Convexity test: distances within kPlaneTolerance of the mesh's size, plus
-/// kFloatTolerance of its largest coordinate (assimp stores floats), count as
-/// on a plane; areas within kAreaTolerance (relative) as equal.
+/// Convexity test: distances within the mesh_convex_tolerance of the mesh's
+/// size, never less than kPlaneTolerance of it, plus kFloatTolerance of its
+/// largest coordinate (assimp stores floats), count as on a plane; areas
+/// within kAreaTolerance (relative) as equal.
 constexpr double kPlaneTolerance = 1e-6;
 constexpr double kFloatTolerance = 5e-7;
 constexpr double kAreaTolerance = 1e-5;
@@ -39,6 +40,9 @@ constexpr double kFloatMax = static_cast<double>(std::numeric_limits<float>::max
 /// in at most this many point-plane evaluations (about 20 ms): a non-convex
 /// mesh, the common case, then never reaches qhull.
 constexpr std::size_t kWitnessBudget = std::size_t{1} << 24;
+/// A triangle whose smallest height is below twice the plane tolerance (its
+/// plane's tilt within the tolerance is above 30 degrees) is no witness.
+constexpr double kMaxWitnessSlope = 0.5;
 /// A triangle the hull code rejects is a sliver, skipped, when its height is
 /// at most this fraction of its longest edge. The core's flatness test
 /// resolves a triangle's plane only to about 1e-16 / (height / edge)^2 of its
@@ -147,62 +151,168 @@ double hullArea(const ConvexPolytope& hull) {
   return area;
 }
 
-/// True when the triangles (three corners each, none degenerate) cover the
-/// boundary of `hull` exactly: each lies in a supporting plane of the hull
-/// and their total area is the hull's.
-bool equalsHull(const std::vector<Eigen::Vector3d>& tri, const ConvexPolytope& hull, double plane_tol) {
-  double area = 0.0;
+/// Volume of a hull that is not flat (faces as pyramids from its centroid).
+double hullVolume(const ConvexPolytope& hull) {
+  double volume = 0.0;
+  const Eigen::Vector3d& c = hull.centroid();
+  for (int f = 0; f < hull.numFaces(); ++f) {
+    const IndexRange loop = hull.faceVertices(f);
+    const Eigen::Vector3d& v0 = hull.vertex(loop[0]);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int i = 1; i + 1 < loop.size(); ++i) sum += (hull.vertex(loop[i]) - v0).cross(hull.vertex(loop[i + 1]) - v0);
+    volume += 0.5 * sum.norm() * (hull.faceOffset(f) - hull.faceNormal(f).dot(c)) / 3.0;
+  }
+  return volume;
+}
+
+/// The volume the triangles enclose, signed (positive when they wind
+/// counter-clockwise seen from outside); meaningful for a closed, oriented
+/// mesh. Taken about `o` (a point near the mesh) to keep round-off small.
+double signedVolume(const std::vector<Eigen::Vector3d>& tri, const Eigen::Vector3d& o) {
+  double six = 0.0;
+  for (std::size_t t = 0; t < tri.size(); t += 3) six += (tri[t] - o).dot((tri[t + 1] - o).cross(tri[t + 2] - o));
+  return six / 6.0;
+}
+
+/// True when the corners all lie within plane_tol below the plane n . x = h.
+bool nearPlane(const Eigen::Vector3d* corners, const Eigen::Vector3d& n, double h, double plane_tol) {
+  return n.dot(corners[0]) >= h - plane_tol && n.dot(corners[1]) >= h - plane_tol && n.dot(corners[2]) >= h - plane_tol;
+}
+
+bool lessXyz(const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+  return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
+}
+
+/// The distinct positions among `points`, sorted (lessXyz).
+std::vector<Eigen::Vector3d> distinctPositions(const std::vector<Eigen::Vector3d>& points) {
+  std::vector<Eigen::Vector3d> unique = points;
+  std::sort(unique.begin(), unique.end(), lessXyz);
+  unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+  return unique;
+}
+
+/// The index of `p` in `unique` (distinctPositions), or -1.
+int positionId(const std::vector<Eigen::Vector3d>& unique, const Eigen::Vector3d& p) {
+  const auto it = std::lower_bound(unique.begin(), unique.end(), p, lessXyz);
+  return it != unique.end() && *it == p ? static_cast<int>(it - unique.begin()) : -1;
+}
+
+/// Finds, for each triangle, a supporting plane of the hull that its three
+/// corners are within plane_tol of (then the triangle, which lies inside the
+/// hull, is within plane_tol of the hull's boundary). Tried in turn: the
+/// support planes along the triangle's normal (exact and fast for a mesh
+/// whose faces are planar); the hull faces found last for triangles at the
+/// same corners, and the hull faces at the corners that are hull vertices
+/// (for a face made of many slightly tilted triangles, whose hull has many
+/// small faces); every face of the hull (charged to kWitnessBudget). Returns
+/// the index of the first triangle without one, or -1.
+int firstTriangleOffHull(const std::vector<Eigen::Vector3d>& tri, const ConvexPolytope& hull, double plane_tol) {
+  const std::vector<Eigen::Vector3d> unique = distinctPositions(tri);
+  // The hull's vertices are input points, equal to the corners they come from.
+  std::vector<int> hull_vertex(unique.size(), -1);
+  for (int v = 0; v < hull.numVertices(); ++v) {
+    const int id = positionId(unique, hull.vertex(v));
+    if (id >= 0) hull_vertex[static_cast<std::size_t>(id)] = v;
+  }
+  std::vector<int> last_face(unique.size(), -1);
+  const auto nearFace = [&](const Eigen::Vector3d* corners, int f) {
+    return nearPlane(corners, hull.faceNormal(f), hull.faceOffset(f), plane_tol);
+  };
+  std::size_t budget = kWitnessBudget;
   int hint = -1;
   for (std::size_t t = 0; t < tri.size(); t += 3) {
-    const Eigen::Vector3d& a = tri[t];
-    const Eigen::Vector3d& b = tri[t + 1];
-    const Eigen::Vector3d& c = tri[t + 2];
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    area += 0.5 * n.norm();
-    const Eigen::Vector3d u = n.normalized();
-    bool on_boundary = false;
+    const Eigen::Vector3d* corners = &tri[t];
+    const Eigen::Vector3d u = (corners[1] - corners[0]).cross(corners[2] - corners[0]).normalized();
+    bool found = false;
     for (const double sign : {1.0, -1.0}) {
       const Eigen::Vector3d s = sign * u;
       hint = hull.supportVertex(s, hint);
-      const double h = s.dot(hull.vertex(hint));
-      if (s.dot(a) >= h - plane_tol && s.dot(b) >= h - plane_tol && s.dot(c) >= h - plane_tol) {
-        on_boundary = true;
-        break;
+      found = found || nearPlane(corners, s, s.dot(hull.vertex(hint)), plane_tol);
+    }
+    if (found) continue;
+    if (hull.isFlat()) return static_cast<int>(t / 3);
+    std::size_t ids[3];
+    for (int c = 0; c < 3; ++c) ids[c] = static_cast<std::size_t>(positionId(unique, corners[c]));
+    int face = -1;
+    for (int c = 0; c < 3 && face < 0; ++c) {
+      if (last_face[ids[c]] >= 0 && nearFace(corners, last_face[ids[c]])) face = last_face[ids[c]];
+    }
+    for (int c = 0; c < 3 && face < 0; ++c) {
+      if (hull_vertex[ids[c]] < 0) continue;
+      for (const int f : hull.vertexFaces(hull_vertex[ids[c]])) {
+        if (nearFace(corners, f)) {
+          face = f;
+          break;
+        }
       }
     }
-    if (!on_boundary) return false;
+    const auto faces = static_cast<std::size_t>(hull.numFaces());
+    if (face < 0 && faces <= budget) {
+      budget -= faces;
+      for (int f = 0; f < hull.numFaces() && face < 0; ++f) {
+        if (nearFace(corners, f)) face = f;
+      }
+    }
+    if (face < 0) return static_cast<int>(t / 3);
+    for (const std::size_t id : ids) last_face[id] = face;
   }
+  return -1;
+}
+
+/// True when the triangles cover the boundary of the (built) hull: by volume
+/// for a closed, oriented mesh that is not thin, else by area (see
+/// meshPieces in loaders.h).
+bool coversHull(const std::vector<Eigen::Vector3d>& tri, const ConvexPolytope& hull, double plane_tol, bool oriented) {
   const double hull_area = hullArea(hull);
+  if (oriented && !hull.isFlat()) {
+    const double volume = std::abs(signedVolume(tri, hull.centroid()));
+    const double skin = plane_tol * hull_area;  // at least the volume of the hull's skin of depth plane_tol
+    if (volume > skin && volume >= hullVolume(hull) - skin) return true;
+  }
+  double area = 0.0;
+  for (std::size_t t = 0; t < tri.size(); t += 3) area += 0.5 * (tri[t + 1] - tri[t]).cross(tri[t + 2] - tri[t]).norm();
   return std::abs(area - hull_area) <= kAreaTolerance * hull_area;
 }
 
-/// True when some triangle has mesh points more than plane_tol beyond both
-/// sides of its plane: that triangle lies in no supporting plane of the hull,
-/// so the mesh is not convex (equalsHull would say false). Gives up (false)
-/// once kWitnessBudget point-plane evaluations are spent.
-bool nonConvexityWitness(const std::vector<Eigen::Vector3d>& tri, double plane_tol) {
-  std::vector<Eigen::Vector3d> points = tri;
-  const auto less = [](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
-    return std::lexicographical_compare(p.data(), p.data() + 3, q.data(), q.data() + 3);
-  };
-  std::sort(points.begin(), points.end(), less);
-  points.erase(std::unique(points.begin(), points.end()), points.end());
+/// The first triangle found, without a hull, to be within plane_tol of no
+/// supporting plane of the hull (-1 if none is found): then the mesh is not
+/// convex. Gives up (-1) once kWitnessBudget point-plane evaluations are spent.
+///
+/// Why it holds: let T have corners a, b, c, unit normal u and smallest height
+/// H. If its corners are within e = plane_tol of a supporting plane with unit
+/// normal n (every mesh point p has n . p <= n . a + e), then n = cos t u +
+/// sin t w (w in T's plane) with |sin t| <= e / H, since n varies by at most e
+/// across T, whose extent along any direction of its plane is at least H. On
+/// the side cos t > 0, every p then has u . (p - a) <= (e + |p - a| e / H) /
+/// sqrt(1 - (e / H)^2), and symmetrically for cos t < 0. Mesh points beyond
+/// that bound on both sides of T's plane leave n no side. (Tilting T's plane
+/// matters for a tolerance well above the round-off: a face made of small,
+/// slightly tilted triangles is convex within e although its points lie
+/// farther than e from the plane of one small triangle.)
+int nonConvexityWitness(const std::vector<Eigen::Vector3d>& tri, double plane_tol) {
+  const std::vector<Eigen::Vector3d> points = distinctPositions(tri);
   std::size_t budget = kWitnessBudget;
   for (std::size_t t = 0; t < tri.size(); t += 3) {
-    if (points.size() > budget) return false;
-    budget -= points.size();
     const Eigen::Vector3d& a = tri[t];
-    const Eigen::Vector3d n = (tri[t + 1] - a).cross(tri[t + 2] - a).normalized();
+    const Eigen::Vector3d cross = (tri[t + 1] - a).cross(tri[t + 2] - a);
+    const double height = cross.norm() / std::sqrt(longestEdgeSquared(a, tri[t + 1], tri[t + 2]));
+    const double slope = plane_tol / height;  // largest sin t
+    if (!(slope < kMaxWitnessSlope)) continue;
+    if (points.size() > budget) return -1;
+    budget -= points.size();
+    const Eigen::Vector3d u = cross.normalized();
+    const double scale = 1.0 / std::sqrt(1.0 - slope * slope);
     bool above = false;
     bool below = false;
     for (const Eigen::Vector3d& p : points) {
-      const double s = n.dot(p - a);
-      above = above || s > plane_tol;
-      below = below || s < -plane_tol;
-      if (above && below) return true;
+      const double s = u.dot(p - a);
+      const double bound = (plane_tol + slope * (p - a).norm()) * scale;
+      above = above || s > bound;
+      below = below || s < -bound;
+      if (above && below) return static_cast<int>(t / 3);
     }
   }
-  return false;
+  return -1;
 }
 
 /// "triangles 3, 17 and 2 more" style list of file indices.
@@ -234,9 +344,49 @@ std::string briefReason(const std::string& message) {
   return line;
 }
 
-ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull) {
+MeshTopology meshTopology(const std::vector<Eigen::Vector3d>& corners) {
+  // Vertex ids by exact position.
+  const std::vector<Eigen::Vector3d> unique = distinctPositions(corners);
+  std::vector<std::size_t> id(corners.size());
+  for (std::size_t i = 0; i < corners.size(); ++i) id[i] = static_cast<std::size_t>(positionId(unique, corners[i]));
+  // Each edge as (lower id, higher id, 1 when it runs from lower to higher).
+  struct Edge {
+    std::size_t lo, hi;
+    int forward;
+  };
+  std::vector<Edge> edges;
+  edges.reserve(corners.size());
+  for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
+    const std::size_t v[3] = {id[t], id[t + 1], id[t + 2]};
+    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = v[k];
+      const std::size_t b = v[(k + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : 0});
+    }
+  }
+  MeshTopology topology;
+  if (edges.empty()) return topology;
+  std::sort(edges.begin(), edges.end(),
+            [](const Edge& a, const Edge& b) { return a.lo != b.lo ? a.lo < b.lo : a.hi < b.hi; });
+  topology.closed = true;
+  topology.oriented = true;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    int forward = 0;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) forward += edges[j++].forward;
+    if (j - i != 2) topology.closed = false;
+    if (j - i != 2 || forward != 1) topology.oriented = false;
+    i = j;
+  }
+  return topology;
+}
+
+ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull,
+                              bool oriented) {
   ConvexityCheck check;
-  if (nonConvexityWitness(tri, plane_tol)) return check;
+  check.triangle = nonConvexityWitness(tri, plane_tol);
+  if (check.triangle >= 0) return check;
   // The hull here only decides whether the mesh is convex: when qhull cannot
   // build it (precision errors on large, nearly coplanar meshes, slivers),
   // the mesh is taken as non-convex, which is always correct (its triangles
@@ -250,9 +400,20 @@ ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double pl
   } catch (const DegenerateGeometryError& e) {
     check.hull_error = briefReason(e.what());
   }
-  if (!check.hull_error.empty()) return check;
+  if (!check.hull_error.empty()) {
+    check.verdict = ConvexityVerdict::kHullFailed;
+    return check;
+  }
   check.has_hull = true;
-  check.convex = equalsHull(tri, check.hull, plane_tol);
+  check.triangle = firstTriangleOffHull(tri, check.hull, plane_tol);
+  if (check.triangle >= 0) {
+    check.verdict = ConvexityVerdict::kOffHull;
+  } else if (!coversHull(tri, check.hull, plane_tol, oriented)) {
+    check.verdict = ConvexityVerdict::kUncovered;
+  } else {
+    check.verdict = ConvexityVerdict::kConvex;
+    check.convex = true;
+  }
   return check;
 }
 
@@ -260,6 +421,15 @@ void requireFile(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw SceneError(display(file) + ": file not found");
   if (!std::filesystem::is_regular_file(file, ec)) throw SceneError(display(file) + ": not a regular file");
+}
+
+void requireMeshConvexTolerance(double tolerance, const std::string& what) {
+  if (!(tolerance >= 0.0 && tolerance <= kMaxMeshConvexTolerance)) {
+    std::ostringstream s;
+    s << what << ": mesh_convex_tolerance must be a number in [0, " << kMaxMeshConvexTolerance << "] (got " << tolerance
+      << "; for a mesh's hull whatever its shape, use mesh_convex_hull)";
+    throw SceneError(s.str());
+  }
 }
 
 void requirePositiveTolerance(double tolerance, const std::string& what) {
@@ -303,6 +473,7 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   out = MeshInfo{};
   out.vertices = static_cast<int>(data.vertices.size());
   out.triangles = static_cast<int>(data.triangles.size() / 3);
+  requireMeshConvexTolerance(options.mesh_convex_tolerance, display(file));
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& v : data.vertices) mean += scale.cwiseProduct(v);
   mean /= static_cast<double>(std::max<std::size_t>(1, data.vertices.size()));
@@ -315,6 +486,8 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   std::vector<int> tri_index;  // index of each kept triangle in the file
   std::vector<int> skipped;    // file indices of the triangles that are no piece
   double skipped_height = 0.0;
+  std::vector<Eigen::Vector3d> posed;  // every triangle, the degenerate ones too (for the topology)
+  posed.reserve(data.triangles.size());
   tri.reserve(data.triangles.size());
   for (std::size_t t = 0; t < data.triangles.size(); t += 3) {
     Eigen::Vector3d p[3];
@@ -324,6 +497,7 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
       throw SceneError(display(file) + ": triangle " + std::to_string(t / 3) +
                        ": a corner is not finite once scaled and posed (the scale or pose is too large)");
     }
+    posed.insert(posed.end(), {p[0], p[1], p[2]});
     if (degenerate(p[0], p[1], p[2])) {
       ++out.degenerate_triangles;
       skipped.push_back(static_cast<int>(t / 3));
@@ -336,6 +510,10 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   if (tri.empty()) {
     throw SceneError(display(file) + ": all " + std::to_string(out.triangles) + " triangles are degenerate");
   }
+
+  const MeshTopology topology = meshTopology(posed);
+  out.closed = topology.closed;
+  out.oriented = topology.oriented;
 
   std::vector<Piece> pieces;
   if (options.mesh_convex_hull) {
@@ -358,8 +536,9 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
     box.extend(p);
     largest = std::max(largest, p.cwiseAbs().maxCoeff());
   }
-  const double plane_tol = kPlaneTolerance * box.diagonal().norm() + kFloatTolerance * largest;
-  ConvexityCheck check = checkConvexity(tri, plane_tol, &ConvexPolytope::fromPoints);
+  const double size = box.diagonal().norm();
+  const double plane_tol = std::max(options.mesh_convex_tolerance, kPlaneTolerance) * size + kFloatTolerance * largest;
+  ConvexityCheck check = checkConvexity(tri, plane_tol, &ConvexPolytope::fromPoints, topology.oriented);
   out.convex = check.convex;
   if (!check.hull_error.empty()) {
     out.hull_failed = true;
@@ -370,6 +549,26 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   if (out.convex) {
     pieces.push_back(Piece::make(std::move(check.hull), PieceKind::kConvex, origin_prefix + ": convex"));
     return pieces;
+  }
+  if (topology.closed) {
+    std::string why;
+    switch (check.verdict) {
+      case ConvexityVerdict::kWitness:
+        why = "triangle " + std::to_string(tri_index[static_cast<std::size_t>(check.triangle)]) +
+              " has mesh points on both sides of its plane, beyond what the tolerance allows";
+        break;
+      case ConvexityVerdict::kOffHull:
+        why = "triangle " + std::to_string(tri_index[static_cast<std::size_t>(check.triangle)]) + " is farther than " +
+              shortNumber(plane_tol) + " from every supporting plane of the hull";
+        break;
+      case ConvexityVerdict::kUncovered: why = "the triangles do not cover the hull"; break;
+      case ConvexityVerdict::kHullFailed:
+      case ConvexityVerdict::kConvex: why = "its hull could not be built"; break;
+    }
+    out.warnings.push_back(display(file) + ": closed mesh of " + std::to_string(out.triangles) +
+                           " triangles loaded as a hollow triangle soup (not convex within the mesh_convex_tolerance " +
+                           shortNumber(options.mesh_convex_tolerance) + " of its size " + shortNumber(size) + ": " +
+                           why + "): a body entirely inside it does not collide with it");
   }
 
   // One piece per triangle. A sliver the hull code cannot make a polytope of

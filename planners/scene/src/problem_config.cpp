@@ -111,13 +111,35 @@ class Reader {
 /// [problem] keys OMPL.app declares, and ours (everything else is a space
 /// parameter).
 const std::vector<std::string>& declaredProblemKeys() {
-  static const std::vector<std::string> keys = {
-      "name",         "robot",           "world",           "objective",    "objective.threshold",
-      "threshold",    "solution_length", "start.x",         "start.y",      "start.z",
-      "start.axis.x", "start.axis.y",    "start.axis.z",    "start.theta",  "goal.x",
-      "goal.y",       "goal.z",          "goal.axis.x",     "goal.axis.y",  "goal.axis.z",
-      "goal.theta",   "volume.min.x",    "volume.min.y",    "volume.min.z", "volume.max.x",
-      "volume.max.y", "volume.max.z",    "translation_only"};
+  static const std::vector<std::string> keys = {"name",
+                                                "robot",
+                                                "world",
+                                                "objective",
+                                                "objective.threshold",
+                                                "threshold",
+                                                "solution_length",
+                                                "start.x",
+                                                "start.y",
+                                                "start.z",
+                                                "start.axis.x",
+                                                "start.axis.y",
+                                                "start.axis.z",
+                                                "start.theta",
+                                                "goal.x",
+                                                "goal.y",
+                                                "goal.z",
+                                                "goal.axis.x",
+                                                "goal.axis.y",
+                                                "goal.axis.z",
+                                                "goal.theta",
+                                                "volume.min.x",
+                                                "volume.min.y",
+                                                "volume.min.z",
+                                                "volume.max.x",
+                                                "volume.max.y",
+                                                "volume.max.z",
+                                                "translation_only",
+                                                "mesh_convex_tolerance"};
   return keys;
 }
 
@@ -207,6 +229,15 @@ void readProblem(const Reader& r, const std::vector<Entry>& entries, ProblemConf
   }
   if (has("objective.threshold")) c->objective_threshold = num("objective.threshold");
   if (has("solution_length")) c->solution_length = num("solution_length");
+  if (has("mesh_convex_tolerance")) {
+    c->mesh_convex_tolerance = num("mesh_convex_tolerance");
+    if (!(*c->mesh_convex_tolerance >= 0.0 && *c->mesh_convex_tolerance <= kMaxMeshConvexTolerance)) {
+      r.fail(known.at("mesh_convex_tolerance")->line,
+             "mesh_convex_tolerance: must be in [0, " + detail::formatNumber(kMaxMeshConvexTolerance) +
+                 "] (a fraction of each mesh's size; for a mesh's hull whatever its shape, load it with "
+                 "mesh_convex_hull)");
+    }
+  }
   if (has("translation_only") && r.boolean(*known.at("translation_only"))) {
     c->space = se3 ? SpaceKind::kR3 : SpaceKind::kR2;
     if (!detail::sameRotation(c->start, c->goal, c->space)) {

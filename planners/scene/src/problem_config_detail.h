@@ -9,7 +9,8 @@
 namespace mddual::scene::detail {
 
 /// True for the [problem] keys the reader interprets itself (OMPL.app's
-/// declared keys, translation_only and control); other keys are space
+/// declared keys, translation_only, mesh_convex_tolerance and control); other
+/// keys are space
 /// parameters.
 bool isDeclaredProblemKey(const std::string& key);
 

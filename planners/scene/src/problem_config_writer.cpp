@@ -141,9 +141,10 @@ bool ProblemConfig::operator==(const ProblemConfig& o) const {
   return name == o.name && robot == o.robot && world == o.world && space == o.space && start == o.start &&
          goal == o.goal && sameBox(volume, o.volume) && objective == o.objective &&
          objective_threshold == o.objective_threshold && threshold == o.threshold &&
-         solution_length == o.solution_length && space_parameters == o.space_parameters && time_limit == o.time_limit &&
-         mem_limit == o.mem_limit && run_count == o.run_count && output == o.output && save_paths == o.save_paths &&
-         simplify == o.simplify && planners == o.planners;
+         solution_length == o.solution_length && mesh_convex_tolerance == o.mesh_convex_tolerance &&
+         space_parameters == o.space_parameters && time_limit == o.time_limit && mem_limit == o.mem_limit &&
+         run_count == o.run_count && output == o.output && save_paths == o.save_paths && simplify == o.simplify &&
+         planners == o.planners;
 }
 
 std::filesystem::path resolvePath(const ProblemConfig& config, const std::filesystem::path& p) {
@@ -174,6 +175,14 @@ void writeProblemConfig(const ProblemConfig& c, const std::filesystem::path& cfg
   if (c.objective_threshold) number(out, "objective.threshold", *c.objective_threshold);
   if (c.solution_length) number(out, "solution_length", *c.solution_length);
   if (isTranslationOnly(c.space)) line(out, "translation_only", "true");
+  if (c.mesh_convex_tolerance) {
+    if (!(*c.mesh_convex_tolerance >= 0.0 && *c.mesh_convex_tolerance <= kMaxMeshConvexTolerance)) {
+      throw SceneError("cannot write " + detail::display(cfg) + ": mesh_convex_tolerance " +
+                       formatNumber(*c.mesh_convex_tolerance) + " is not in [0, " +
+                       formatNumber(kMaxMeshConvexTolerance) + "]");
+    }
+    number(out, "mesh_convex_tolerance", *c.mesh_convex_tolerance);
+  }
   for (const auto& [key, value] : c.space_parameters) {
     if (detail::isDeclaredProblemKey(key)) {
       throw SceneError("cannot write the space parameter " + quote(key) + ": the reader takes it for its own key");

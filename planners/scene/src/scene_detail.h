@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -25,6 +26,10 @@ inline std::string display(const std::filesystem::path& p) {
 /// Throws SceneError unless `file` is an existing regular file.
 void requireFile(const std::filesystem::path& file);
 
+/// Throws SceneError(what + ": " + reason) unless `tolerance` is a
+/// mesh_convex_tolerance in [0, kMaxMeshConvexTolerance].
+void requireMeshConvexTolerance(double tolerance, const std::string& what);
+
 /// Throws SceneError(what + ": " + reason) unless `tolerance` is finite and > 0.
 void requirePositiveTolerance(double tolerance, const std::string& what);
 
@@ -46,22 +51,48 @@ std::string briefReason(const std::string& message);
 /// Builds a hull (ConvexPolytope::fromPoints; tests pass one that fails).
 using HullBuilder = ConvexPolytope (*)(const std::vector<Eigen::Vector3d>&);
 
+/// How the triangles of a mesh connect (meshTopology).
+struct MeshTopology {
+  bool closed = false;    ///< every edge shared by exactly two triangles
+  bool oriented = false;  ///< closed, and every edge used once in each direction
+};
+
+/// The topology of triangles (three corners each): corners are the same
+/// vertex when their positions are equal; a triangle with two equal corners
+/// is left out (it has no proper edges). No triangles: not closed.
+MeshTopology meshTopology(const std::vector<Eigen::Vector3d>& corners);
+
+/// Why checkConvexity said what it said.
+enum class ConvexityVerdict : std::uint8_t {
+  kConvex,      ///< the triangles bound their hull within plane_tol
+  kWitness,     ///< a triangle has mesh points too far on both sides of its plane (no hull built)
+  kHullFailed,  ///< the hull could not be built (hull_error says why)
+  kOffHull,     ///< a triangle is not within plane_tol of a supporting plane of the hull
+  kUncovered,   ///< the triangles do not cover the hull's boundary (volume and area tests)
+};
+
 /// The outcome of checkConvexity.
 struct ConvexityCheck {
-  bool convex = false;     ///< the triangles are the boundary of their hull
+  bool convex = false;  ///< the triangles are the boundary of their hull, within plane_tol
+  ConvexityVerdict verdict = ConvexityVerdict::kWitness;
+  int triangle = -1;       ///< kWitness, kOffHull: the triangle (index in `tri` / 3)
   bool has_hull = false;   ///< `hull` was built
   ConvexPolytope hull;     ///< the hull of the triangles' corners (when has_hull)
   std::string hull_error;  ///< why the hull could not be built (briefReason), else empty
 };
 
 /// Decides whether the triangles (three corners each, none degenerate) are
-/// the boundary of a convex body, within plane_tol: first a bounded search
-/// for a triangle with corners beyond both sides of its plane (then the mesh
-/// is not convex and no hull is built), then `build_hull` and a comparison of
-/// the triangles with the hull. A HullError, NumericalError or
+/// the boundary of a convex body, within plane_tol (the test of meshPieces,
+/// loaders.h): first a bounded search for a triangle with corners beyond
+/// both sides of its plane (then the mesh is not convex and no hull is
+/// built), then `build_hull` and a comparison of the triangles with the hull:
+/// each within plane_tol of a supporting plane, and covering it (by the
+/// enclosed volume when `oriented`, the mesh being closed and consistently
+/// oriented, or else by area). A HullError, NumericalError or
 /// DegenerateGeometryError from build_hull never escapes: the mesh is then
 /// reported not convex, with the reason in hull_error.
-ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull);
+ConvexityCheck checkConvexity(const std::vector<Eigen::Vector3d>& tri, double plane_tol, HullBuilder build_hull,
+                              bool oriented = false);
 
 /// meshPieces with the pieces' origins prefixed by `origin_prefix`
 /// ("<prefix>: triangle 3").
@@ -71,10 +102,11 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
 
 /// The collision pieces of a URDF file in its root link's frame; `robot_name`
 /// receives the URDF's robot name; `warnings` (if not null) receives the
-/// meshes' load warnings, each prefixed with its link and collision element.
-/// Throws SceneError naming the file, link and collision element.
+/// meshes' load warnings, each prefixed with its link and collision element;
+/// `counts` (if not null) has the meshes added. Throws SceneError naming the
+/// file, link and collision element.
 std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name,
-                              std::vector<std::string>* warnings);
+                              std::vector<std::string>* warnings, MeshCounts* counts);
 
 /// True when `file`'s extension is .urdf (any case).
 bool isUrdf(const std::filesystem::path& file);

@@ -95,7 +95,7 @@ std::filesystem::path meshPath(const std::string& filename, const std::filesyste
 /// Pieces of one collision element, in the root frame; X_RL is the link's pose.
 void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_RL,
                   const std::filesystem::path& urdf_dir, const LoadOptions& options, const std::string& where,
-                  std::vector<Piece>* out, std::vector<std::string>* warnings) {
+                  std::vector<Piece>* out, std::vector<std::string>* warnings, MeshCounts* counts) {
   if (!collision.geometry) throw SceneError(where + ": no geometry");
   const Eigen::Isometry3d X_RG = X_RL * toIsometry(collision.origin);
   const double tol = options.primitive_tolerance;
@@ -137,6 +137,7 @@ void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_R
       if (warnings != nullptr) {
         for (const std::string& w : info.warnings) warnings->push_back(where + ": " + w);
       }
+      if (counts != nullptr) counts->add(info, mesh_options.mesh_convex_hull);
       for (Piece& p : pieces) out->push_back(std::move(p));
       return;
     }
@@ -154,7 +155,7 @@ bool isUrdf(const std::filesystem::path& file) {
 }
 
 std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptions& options, std::string* robot_name,
-                              std::vector<std::string>* warnings) {
+                              std::vector<std::string>* warnings, MeshCounts* counts) {
   requireFile(file);
   requirePositiveTolerance(options.primitive_tolerance, display(file));
   requireShallowXml(file);  // urdfdom's XML parser recurses once per nesting level
@@ -174,7 +175,7 @@ std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptio
     for (std::size_t i = 0; i < link->collision_array.size(); ++i) {
       const std::string where = name + ": link " + quote(link->name) + ", collision " + std::to_string(i);
       if (!link->collision_array[i]) continue;
-      addCollision(*link->collision_array[i], X_RL, dir, options, where, &pieces, warnings);
+      addCollision(*link->collision_array[i], X_RL, dir, options, where, &pieces, warnings, counts);
     }
     for (const urdf::JointSharedPtr& joint : link->child_joints) {
       const urdf::LinkConstSharedPtr child = model->getLink(joint->child_link_name);

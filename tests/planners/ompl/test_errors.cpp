@@ -91,6 +91,7 @@ TEST(Errors, SceneAndCheckers) {
   expectError([&] { MddStateValidityChecker(fx.si, fx.space, nullptr); }, "scene is null");
   expectError([&] { MddStateValidityChecker(other, fx.space, fx.mdd); }, "state space");
   expectError([&] { MddMotionValidator(other, fx.space, fx.mdd); }, "state space");
+  expectError([&] { MddMotionValidator(other, fx.space, fx.mdd); }, "useExactChecking()");
   expectError([&] { MddMotionValidator(fx.si, fx.space, nullptr); }, "scene is null");
   expectError([&] { FclStateValidityChecker(other, fx.space, fx.fcl); }, "state space");
   expectError([&] { FclStateValidityChecker(fx.fcl_si, fx.space, nullptr); }, "FclScene is null");

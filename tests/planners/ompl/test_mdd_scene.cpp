@@ -21,9 +21,9 @@ constexpr double kPi = 3.14159265358979323846;
 /// The old state check: every robot piece of `set` against the world pieces
 /// whose boxes meet its box at X_WR.
 bool pairLoopCollides(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR) {
-  const std::vector<scene::Piece>& pieces = mdd.pieceSet(set);
   std::vector<int> candidates;
-  for (const scene::Piece& piece : pieces) {
+  for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
+    const scene::Piece& piece = mdd.setPiece(set, i);
     candidates.clear();
     mdd.world().candidates(scene::transformedBox(piece.box, X_WR), &candidates);
     for (int j : candidates) {
@@ -41,16 +41,15 @@ bool pairLoopCollides(const MddScene& mdd, int set, const Eigen::Isometry3d& X_W
 /// length), the smallest contact distance (0 when the start collides).
 double pairLoopSweep(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W,
                      double max_distance) {
-  const std::vector<scene::Piece>& pieces = mdd.pieceSet(set);
   std::vector<int> candidates;
   double best = kInf;
-  for (int i = 0; i < static_cast<int>(pieces.size()); ++i) {
+  for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
     candidates.clear();
     mdd.sweptCandidates(set, i, X_WR, v_W, max_distance, &candidates);
     for (int j : candidates) {
       DirectionalInput in;
       in.a = &mdd.world().pieces()[static_cast<std::size_t>(j)].polytope;
-      in.b = &pieces[static_cast<std::size_t>(i)].polytope;
+      in.b = &mdd.setPiece(set, i).polytope;
       in.X_WB = X_WR;
       in.s_W = v_W;
       in.max_distance = max_distance;

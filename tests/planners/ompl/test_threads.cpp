@@ -6,12 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <ompl/base/ScopedState.h>
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <thread>
 #include <vector>
 
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/spaces/SE3StateSpace.h>
+
 #include "mddual/planning/clearance.h"
+#include "mddual/planning/exact_checking.h"
 #include "test_support.h"
 
 namespace mddual::planning {
@@ -159,6 +164,78 @@ std::string threadSceneName(const ::testing::TestParamInfo<int>& p) {
   }
 }
 INSTANTIATE_TEST_SUITE_P(Scenes, Threads, ::testing::Values(0, 1, 2), threadSceneName);
+
+// The checkers installed by useExactChecking() on a user-made SE(3) x R^1
+// space: the same answers from eight threads as from one (the joint leaves its
+// bounds on some edges).
+TEST(UserSpaceThreads, CompoundSpaceSameAnswersFromEightThreads) {
+  const examples::ExampleScene scene = examples::blobScene(testing::seed(), 15);
+  auto body = std::make_shared<ob::SE3StateSpace>();
+  ob::RealVectorBounds b(3);
+  for (unsigned int k = 0; k < 3; ++k) {
+    b.setLow(k, scene.bounds.min()[static_cast<int>(k)]);
+    b.setHigh(k, scene.bounds.max()[static_cast<int>(k)]);
+  }
+  body->setBounds(b);
+  auto joint = std::make_shared<ob::RealVectorStateSpace>(1);
+  joint->setBounds(-1.0, 1.0);
+  auto arm = std::make_shared<ob::CompoundStateSpace>();
+  arm->addSubspace(body, 1.0);
+  arm->addSubspace(joint, 1.0);
+  auto si = std::make_shared<ob::SpaceInformation>(arm);
+  const ExactChecking exact = useExactChecking(si, scene.robot, scene.world);
+  si->setup();
+
+  testing::Rng rng(testing::seed() + 9);
+  const PlanningSpacePtr alone = PlanningSpace::se3(scene.bounds);
+  auto setJoint = [](ob::State* s, double v) {
+    s->as<ob::CompoundState>()->as<ob::RealVectorStateSpace::StateType>(1)->values[0] = v;
+  };
+  auto bodyOf = [](ob::State* s) { return s->as<ob::CompoundState>()->components[0]; };
+  std::vector<std::pair<ob::ScopedState<>, ob::ScopedState<>>> edges;
+  const int n = 40 * testing::scale();
+  for (int i = 0; i < n; ++i) {
+    ob::ScopedState<> s1(arm), s2(arm);
+    do {
+      testing::randomState(*alone, rng, bodyOf(s1.get()));
+      setJoint(s1.get(), std::uniform_real_distribution<double>(-1.0, 1.0)(rng));
+    } while (!si->isValid(s1.get()));
+    testing::randomEdgeEnd(*alone, bodyOf(s1.get()), 3.0, i % 2 == 1, kPi, rng, bodyOf(s2.get()));
+    setJoint(s2.get(), std::uniform_real_distribution<double>(-1.5, 1.5)(rng));
+    edges.emplace_back(s1, s2);
+  }
+  auto runAll = [&](std::size_t offset, std::vector<char>* valid, std::vector<double>* last) {
+    ob::ScopedState<> state(arm);
+    valid->assign(edges.size(), 0);
+    last->assign(edges.size(), -1.0);
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      const std::size_t i = (k + offset) % edges.size();
+      (*valid)[i] = si->checkMotion(edges[i].first.get(), edges[i].second.get());
+      std::pair<ob::State*, double> lv(state.get(), -1.0);
+      si->checkMotion(edges[i].first.get(), edges[i].second.get(), lv);
+      (*last)[i] = lv.second;
+    }
+  };
+  std::vector<char> valid;
+  std::vector<double> last;
+  runAll(0, &valid, &last);
+  EXPECT_GT(std::count(valid.begin(), valid.end(), 0), 0);
+  EXPECT_GT(std::count(valid.begin(), valid.end(), 1), 0);
+  std::vector<std::vector<char>> valids(kThreads);
+  std::vector<std::vector<double>> lasts(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      const auto u = static_cast<std::size_t>(t);
+      runAll(u * 7, &valids[u], &lasts[u]);
+    });
+  }
+  for (std::thread& th : threads) th.join();
+  for (std::size_t t = 0; t < static_cast<std::size_t>(kThreads); ++t) {
+    EXPECT_EQ(valids[t], valid) << "thread " << t;
+    for (std::size_t i = 0; i < last.size(); ++i) EXPECT_NEAR(lasts[t][i], last[i], 1e-12) << "thread " << t;
+  }
+}
 
 }  // namespace
 }  // namespace mddual::planning

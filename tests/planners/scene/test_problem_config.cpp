@@ -221,6 +221,29 @@ TEST(ProblemConfig, TranslationOnly) {
   EXPECT_EQ(readProblemConfig(dir.write("t4.cfg", spatial), {"mdd_rrtconnect"}).space, SpaceKind::kSE3);
 }
 
+// Ours: the tolerance under which a mesh loads as its hull (LoadOptions::
+// mesh_convex_tolerance); not a space parameter; written back.
+TEST(ProblemConfig, MeshConvexTolerance) {
+  TempDir dir;
+  std::string planar = kPlanar;
+  EXPECT_FALSE(readProblemConfig(dir.write("none.cfg", planar)).mesh_convex_tolerance);
+  planar.replace(planar.find("threshold = 1e-12"), 17, "threshold = 1e-12\nmesh_convex_tolerance = 2.5e-3");
+  const ProblemConfig c = readProblemConfig(dir.write("t.cfg", planar));
+  ASSERT_TRUE(c.mesh_convex_tolerance);
+  EXPECT_EQ(*c.mesh_convex_tolerance, 2.5e-3);
+  EXPECT_TRUE(c.space_parameters.empty());
+  const auto out = dir.path() / "written.cfg";
+  writeProblemConfig(c, out);
+  const ProblemConfig back = readProblemConfig(out);
+  EXPECT_TRUE(back == c);
+  EXPECT_EQ(back.mesh_convex_tolerance, c.mesh_convex_tolerance);
+  ProblemConfig other = c;
+  other.mesh_convex_tolerance = 0.0;
+  EXPECT_FALSE(other == c);
+  other.mesh_convex_tolerance = 0.5;
+  expectSceneError([&] { writeProblemConfig(other, out); }, {"written.cfg", "mesh_convex_tolerance 0.5 is not in"});
+}
+
 TEST(ProblemConfig, RoundTrips) {
   TempDir dir;
   std::string spatial = kSpatial;
@@ -384,6 +407,14 @@ TEST(ProblemConfigErrors, BadTranslationOnlyValue) {
 TEST(ProblemConfigErrors, TranslationOnlyWithARotatingGoal) {
   expectPlanarError("threshold = 1e-12", "translation_only = true",
                     {"maze.cfg:16: translation_only: the goal's rotation differs"});
+}
+TEST(ProblemConfigErrors, MeshConvexToleranceOutOfRange) {
+  expectPlanarError("threshold = 1e-12", "mesh_convex_tolerance = 0.02",
+                    {"maze.cfg:16: mesh_convex_tolerance: must be in [0, 0.01]", "mesh_convex_hull"});
+  expectPlanarError("threshold = 1e-12", "mesh_convex_tolerance = -1e-4",
+                    {"maze.cfg:16: mesh_convex_tolerance: must be in [0, 0.01]"});
+  expectPlanarError("threshold = 1e-12", "mesh_convex_tolerance = tight",
+                    {"maze.cfg:16: mesh_convex_tolerance: 'tight' is not a number"});
 }
 TEST(ProblemConfigErrors, UnknownBenchmarkKey) {
   expectPlanarError("run_count = 30", "runs = 30", {"maze.cfg:21: unknown [benchmark] key 'runs'"});

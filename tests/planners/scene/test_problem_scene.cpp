@@ -3,6 +3,8 @@
 // and errors that name the cfg and the file.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "mddual/scene/problem_config.h"
 #include "scene_test_util.h"
 
@@ -145,12 +147,77 @@ goal.y = 0
 goal.theta = 0
 )");
   const ProblemScene s = loadProblemScene(readProblemConfig(cfg));
-  ASSERT_EQ(s.warnings.size(), 2u);
-  EXPECT_NE(s.warnings[0].find("two.stl: skipped 1 of 25 triangles"), std::string::npos) << s.warnings[0];
-  EXPECT_EQ(s.warnings[1].rfind("world.urdf: link 'l', collision 0: ", 0), 0u) << s.warnings[1];
-  EXPECT_NE(s.warnings[1].find("two.stl: skipped 1 of 25 triangles"), std::string::npos) << s.warnings[1];
+  // Per mesh: it is closed (two closed boxes) and loaded as triangles, so
+  // hollow; and a triangle is skipped.
+  ASSERT_EQ(s.warnings.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (i >= 2) {
+      EXPECT_EQ(s.warnings[i].rfind("world.urdf: link 'l', collision 0: ", 0), 0u) << s.warnings[i];
+    }
+    const char* expected = i % 2 == 0 ? "two.stl: closed mesh of 25 triangles loaded as a hollow triangle soup"
+                                      : "two.stl: skipped 1 of 25 triangles";
+    EXPECT_NE(s.warnings[i].find(expected), std::string::npos) << s.warnings[i];
+  }
   EXPECT_EQ(s.robot.pieces().size(), 24u);
   EXPECT_EQ(s.world.pieces().size(), 24u);
+  // The counts behind the summary: one mesh each, a closed triangle soup.
+  for (const MeshCounts& m : {s.robot_meshes, s.world_meshes}) {
+    EXPECT_EQ(m.meshes, 1);
+    EXPECT_EQ(m.convex, 0);
+    EXPECT_EQ(m.soups, 1);
+    EXPECT_EQ(m.closed_soups, 1);
+  }
+  EXPECT_EQ(sceneSummary(s),
+            "robot 'two': 24 pieces (24 triangles), 1 mesh (1 triangle soup, 1 closed: hollow); "
+            "world 'w': 24 pieces (24 triangles), 1 mesh (1 triangle soup, 1 closed: hollow)");
+}
+
+// The cfg's mesh_convex_tolerance reaches the loader: a world box whose
+// corner (1, 0, 1) is raised by 1.7e-3 (10 times the default tolerance of
+// its size) is a closed, hollow soup by default and one convex piece with a
+// tolerance of 1e-2; the summary counts it either way.
+TEST(ProblemScene, MeshConvexToleranceFromTheCfg) {
+  TempDir dir;
+  writeAssets(dir);
+  std::vector<Eigen::Vector3d> tri = boxTriangles({0, 0, 0}, {1, 1, 1});
+  for (Eigen::Vector3d& p : tri) {
+    if (p == Eigen::Vector3d(1, 0, 1)) p.z() += 10.0 * kDefaultMeshConvexTolerance * std::sqrt(3.0);
+  }
+  dir.write("assets/rock.stl", asciiStl(tri));
+  std::string text = kPlanar;
+  text.replace(text.find("assets/world.urdf"), 17, "assets/rock.stl");
+  const ProblemScene soup = loadProblemScene(readProblemConfig(dir.write("soup.cfg", text)));
+  EXPECT_EQ(soup.world.pieces().size(), 12u);
+  EXPECT_EQ(soup.world_meshes.closed_soups, 1);
+  EXPECT_EQ(soup.robot_meshes.convex, 1);
+  ASSERT_EQ(soup.warnings.size(), 1u);
+  EXPECT_NE(soup.warnings[0].find("rock.stl: closed mesh of 12 triangles loaded as a hollow triangle soup"),
+            std::string::npos)
+      << soup.warnings[0];
+  EXPECT_EQ(sceneSummary(soup),
+            "robot 'robot': 1 piece (1 convex), 1 mesh (1 convex); "
+            "world 'rock': 12 pieces (12 triangles), 1 mesh (1 triangle soup, 1 closed: hollow)");
+
+  const ProblemScene convex =
+      loadProblemScene(readProblemConfig(dir.write("convex.cfg", text + "mesh_convex_tolerance = 1e-2\n")));
+  EXPECT_EQ(convex.world.pieces().size(), 1u);
+  EXPECT_EQ(convex.world_meshes.convex, 1);
+  EXPECT_EQ(convex.world_meshes.closed_soups, 0);
+  EXPECT_TRUE(convex.warnings.empty());
+  EXPECT_EQ(
+      sceneSummary(convex),
+      "robot 'robot': 1 piece (1 convex), 1 mesh (1 convex); world 'rock': 1 piece (1 convex), 1 mesh (1 convex)");
+  // The cfg's value overrides the caller's options; without it, they apply.
+  LoadOptions strict;
+  strict.mesh_convex_tolerance = 0.0;
+  EXPECT_EQ(loadProblemScene(readProblemConfig(dir.path() / "convex.cfg"), strict).world.pieces().size(), 1u);
+  LoadOptions loose;
+  loose.mesh_convex_tolerance = 1e-2;
+  EXPECT_EQ(loadProblemScene(readProblemConfig(dir.path() / "soup.cfg"), loose).world.pieces().size(), 1u);
+  // A URDF world counts its primitives as pieces, not meshes.
+  const ProblemScene plain = loadProblemScene(readProblemConfig(dir.write("plain.cfg", kPlanar)));
+  EXPECT_EQ(sceneSummary(plain),
+            "robot 'robot': 1 piece (1 convex), 1 mesh (1 convex); world 'floor': 1 piece (1 convex)");
 }
 
 TEST(ProblemSceneErrors, TranslationOnlyConfigBuiltInCodeWithARotatedGoal) {

@@ -26,6 +26,8 @@
 //                              when the verification failed with an error)
 //   invalid raw solution BOOLEAN  the path before simplification was invalid
 //   verification time REAL     seconds spent verifying (both paths)
+//   verification mdd time REAL / verification fcl time REAL: of which check
+//                              (a) / check (b) of PathVerifier
 //   verification error STRING  what went wrong if the verifier threw (the run
 //                              then counts as neither verified nor invalid)
 // Approximate solutions are not solutions: verified and invalid are 0. The

@@ -96,7 +96,8 @@ class FclScene {
   /// The smaller of the libccd and the independent GJK solvers' answers: FCL
   /// 0.7 overestimates convex-convex distances with either (in the tests'
   /// scenes, up to 2.6x with libccd on extruded polygons, 1.12x with the
-  /// independent solver), never both at once there.
+  /// independent solver), never both at once there. Triangle-mesh pairs do
+  /// not use GJK and are computed once.
   double distance(const Eigen::Isometry3d& X_WR) const;
 
   /// Result of continuousCollide().

@@ -9,6 +9,9 @@
 //   si->setStateValidityChecker(std::make_shared<MddStateValidityChecker>(si, space, scene));
 //   si->setMotionValidator(std::make_shared<MddMotionValidator>(si, space, scene));
 //   si->setup();
+// On a SpaceInformation the user made (own SE2/SE3/R^2/R^3 space, or a
+// compound with such a pose part), exact_checking.h does the same in one call:
+//   auto installed = useExactChecking(si, robot, world);
 //
 // Both are thread-safe: OMPL may call their const methods from several
 // threads (per-thread warm starts live in the MddScene; counters are atomic;

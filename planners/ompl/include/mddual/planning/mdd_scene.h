@@ -88,6 +88,8 @@
 #include <Eigen/Geometry>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -179,8 +181,12 @@ class MddScene {
   /// delta (world units).
   double rotationTolerance() const { return delta_; }
   int refinementLevels() const { return static_cast<int>(enlarged_.size()) - 1; }
-  /// Robot pieces enlarged by delta / 2^level (frame R), level in [0, refinementLevels()].
-  const std::vector<scene::Piece>& enlargedPieces(int level) const { return enlarged_.at(level); }
+  /// Robot piece i enlarged by delta / 2^level (frame R), level in [0,
+  /// refinementLevels()]. Built on first use (two small hulls per piece and
+  /// level: on a robot of 3,000 triangles building all of them up front took
+  /// most of a scene's set-up), thread-safe; the reference stays valid for
+  /// the scene's lifetime.
+  const scene::Piece& enlargedPiece(int level, int i) const;
   /// Number of equal time intervals of a rotating edge that would keep every
   /// robot point within delta of its interval's middle orientation (the
   /// intervals the coarsest leaf queries use for a piece at the robot radius).
@@ -206,8 +212,9 @@ class MddScene {
   EdgeContact checkEdge(const EdgeMotion& motion, bool first_contact = true) const;
 
   // ---- Building blocks on a chosen piece set (0: the robot's pieces; k >= 1:
-  // enlargedPieces(k - 1)); for the clearance queries and tests.
-  const std::vector<scene::Piece>& pieceSet(int set) const;
+  // the pieces enlarged at level k - 1); for the clearance queries and tests.
+  /// Piece i of set `set` (every set has robot().pieces().size() pieces).
+  const scene::Piece& setPiece(int set, int i) const;
   bool collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const;
   SweepResult sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
                        bool first_contact) const;
@@ -223,6 +230,12 @@ class MddScene {
   struct WarmTable {
     std::unordered_map<std::uint64_t, WarmStart> map;
   };
+  /// The robot's pieces enlarged by one delta, each built on first use.
+  struct EnlargedLevel {
+    double delta = 0.0;
+    std::unique_ptr<std::once_flag[]> once;
+    std::unique_ptr<std::optional<scene::Piece>[]> pieces;
+  };
   /// Rotating edges (see the file comment); mdd_scene_rotation.cpp.
   void checkRotating(const EdgeMotion& motion, bool first_contact, EdgeContact* out) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
@@ -233,15 +246,17 @@ class MddScene {
   std::shared_ptr<const scene::RigidBody> robot_;
   std::shared_ptr<const scene::World> world_;
   double delta_ = 0.0;
-  std::vector<std::vector<scene::Piece>> enlarged_;
+  std::vector<EnlargedLevel> enlarged_;
   Bvh robot_tree_;  ///< over robot_->pieces(), frame R
   Bvh world_tree_;  ///< over world_->pieces(), frame W
   PerThread<WarmTable> warm_;
 };
 
-/// The pieces of `pieces` enlarged to contain every point within `delta` of
-/// them: the Minkowski sum with an icosahedron or a cube of inradius delta
-/// (the one whose hull has fewer vertices), as kConvex pieces.
+/// `piece` enlarged to contain every point within `delta` of it: the
+/// Minkowski sum with an icosahedron or a cube of inradius delta (the one
+/// whose hull has fewer vertices), as a kConvex piece.
+scene::Piece enlargePiece(const scene::Piece& piece, double delta);
+/// enlargePiece on every piece.
 std::vector<scene::Piece> enlargePieces(const std::vector<scene::Piece>& pieces, double delta);
 
 }  // namespace mddual::planning

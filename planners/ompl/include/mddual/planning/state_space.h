@@ -24,12 +24,41 @@
 // (it moves no robot point by more than 1e-12 of the robot radius, far below
 // the core's touching tolerance of 1e-10 of the pair's size); X_end is then s2's
 // own pose, checked as a state.
+//
+// A PlanningSpace either owns a state space it made (se2(), se3(), r2(), r3(),
+// make()) or wraps a space the user made (wrap()). Layouts wrap() accepts:
+//
+//   - the space itself is an SE2StateSpace, an SE3StateSpace, or a
+//     RealVectorStateSpace of dimension 2 (kR2) or 3 (kR3);
+//   - a CompoundStateSpace (not itself SE2/SE3) one of whose direct components
+//     is such a space, the "pose part":
+//       * named: SpaceWrapOptions::pose_subspace is the component's getName();
+//       * unnamed: the FIRST component, refused as ambiguous when a later
+//         component is SE2/SE3 too, or when the first is R2/R3 and a later one
+//         is R2/R3 too (name the pose part then).
+//     The other components are extra coordinates (joints...) the scene ignores:
+//     each must be a RealVectorStateSpace, SO2StateSpace, SO3StateSpace or a
+//     compound of those (SE2/SE3 included), whose interpolation and bounds the
+//     motion validator can follow (boundsExitFraction()). OMPL's
+//     CompoundStateSpace::interpolate moves every component with the same t,
+//     so the pose part moves exactly as it would alone: motion() holds.
+//
+// Refused with InvalidInputError naming the space and the reason: an SO2/SO3
+// space alone, a RealVectorStateSpace of another dimension, a compound with no
+// pose part, an unnamed pose part that is not the first component, an
+// ambiguous one, a name that is no direct component, extra components of
+// other types, and position bounds that are not set (empty or not finite).
+// The bounds are read when wrap() runs: set them before, wrap again after
+// changing them. The user's subclasses of these spaces must keep OMPL's
+// interpolate() (the state layout is checked with dynamic_cast).
 #pragma once
 
 #include <ompl/base/StateSpace.h>
 #include <ompl/util/ClassForward.h>
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 namespace mddual::planning {
 
@@ -51,7 +80,9 @@ struct EdgeMotion {
   Eigen::Quaterniond q_start = Eigen::Quaterniond::Identity();
   Eigen::Matrix3d R_start = Eigen::Matrix3d::Identity();  ///< q_start as a matrix
   Eigen::Vector3d axis_R = Eigen::Vector3d::UnitZ();
-  double angle = 0.0;  ///< total rotation angle along the edge, in [0, pi]
+  /// Total rotation angle along the edge: in [0, pi] for the edge between two
+  /// OMPL states; an extended edge (edges.h) may turn further.
+  double angle = 0.0;
   Eigen::Isometry3d X_end = Eigen::Isometry3d::Identity();
 
   bool rotates() const { return angle > 0.0; }
@@ -65,6 +96,18 @@ struct EdgeMotion {
 };
 
 OMPL_CLASS_FORWARD(PlanningSpace);
+
+/// How PlanningSpace::wrap() reads the pose from a space the user made (see the
+/// file comment for the accepted layouts).
+struct SpaceWrapOptions {
+  /// Name (StateSpace::getName()) of the direct component of a compound space
+  /// that holds the pose; empty: the space itself, or its first component.
+  std::string pose_subspace;
+  /// Pose part R^2: the robot's fixed z. R^2 and R^3: its fixed orientation
+  /// (normalised; zero or non-finite quaternions are refused).
+  double z = 0.0;
+  Eigen::Quaterniond q_WR = Eigen::Quaterniond::Identity();
+};
 
 /// A planning space of one of the four kinds: owns the OMPL state space (with
 /// the position bounds set) and maps states to poses and back. Immutable after
@@ -86,6 +129,11 @@ class PlanningSpace {
   /// Any kind; z and q_WR are used only by the kinds that fix them.
   static PlanningSpacePtr make(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z = 0.0,
                                const Eigen::Quaterniond& q_WR = Eigen::Quaterniond::Identity());
+  /// Wraps a state space the user made (layouts: file comment); stateSpace()
+  /// is then `space` itself. bounds() are its pose part's position bounds (z
+  /// extent [z, z] for kR2, [0, 0] for kSE2).
+  static PlanningSpacePtr wrap(const ompl::base::StateSpacePtr& space,
+                               const SpaceWrapOptions& options = SpaceWrapOptions());
 
   SpaceKind kind() const { return kind_; }
   const ompl::base::StateSpacePtr& stateSpace() const { return space_; }
@@ -94,10 +142,14 @@ class PlanningSpace {
   /// The fixed orientation and z of the translation-only kinds.
   const Eigen::Quaterniond& fixedOrientation() const { return q_fixed_; }
   double fixedZ() const { return z_fixed_; }
+  /// Index of the pose part among stateSpace()'s components, or -1 when the
+  /// space itself is the pose part.
+  int poseComponent() const { return pose_index_; }
 
   /// The robot's pose X_WR in state `state` (quaternions are normalised).
   Eigen::Isometry3d pose(const ompl::base::State* state) const;
-  /// Writes the state whose pose is X_WR. Throws InvalidInputError when the
+  /// Writes the state whose pose is X_WR (a compound state: its pose part
+  /// only, the other components are left as they are). Throws InvalidInputError when the
   /// pose is not one of this space (kSE2: rotation not about z or z != 0;
   /// kR2/kR3: a different orientation or z), within 1e-9, or is not finite.
   void setPose(const Eigen::Isometry3d& X_WR, ompl::base::State* state) const;
@@ -110,9 +162,19 @@ class PlanningSpace {
   /// The first t in [0, 1] at which p(t) = p1 + t (p2 - p1) leaves the position
   /// bounds (p1 inside), or +infinity if it never does.
   double boundsExitFraction(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) const;
+  /// The same over every bounded coordinate of the state that OMPL
+  /// interpolates linearly: the pose part's position and, for a wrapped
+  /// compound, the extra real-vector components (only coordinates whose value
+  /// at s2 is out of bounds count, as above). s1 is assumed within bounds.
+  double boundsExitFraction(const ompl::base::State* s1, const ompl::base::State* s2) const;
 
  private:
   PlanningSpace(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z, const Eigen::Quaterniond& q_WR);
+  PlanningSpace(SpaceKind kind, ompl::base::StateSpacePtr space, int pose_index, const SpaceWrapOptions& options);
+  void setFixedPose(double z, const Eigen::Quaterniond& q_WR);
+  /// The pose part of a state of stateSpace().
+  const ompl::base::State* poseState(const ompl::base::State* state) const;
+  ompl::base::State* poseState(ompl::base::State* state) const;
 
   SpaceKind kind_;
   Eigen::AlignedBox3d bounds_;
@@ -120,6 +182,7 @@ class PlanningSpace {
   Eigen::Quaterniond q_fixed_ = Eigen::Quaterniond::Identity();
   Eigen::Matrix3d R_fixed_ = Eigen::Matrix3d::Identity();
   int position_dims_ = 3;
+  int pose_index_ = -1;
   ompl::base::StateSpacePtr space_;
 };
 

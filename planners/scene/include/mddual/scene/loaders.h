@@ -29,6 +29,20 @@
 
 namespace mddual::scene {
 
+/// Default of LoadOptions::mesh_convex_tolerance, relative to a mesh's
+/// bounding-box diagonal. 1e-4 (0.1 mm on a 1 m part) is far above the
+/// round-off of the formats meshes come in (32-bit floats: 6e-8 relative;
+/// ASCII STL's six significant digits: 5e-7) and of exporters that leave
+/// quads slightly non-planar (issue 10: rocks off by up to 3e-4), and far
+/// below what planning resolves (OMPL checks motions every 1e-2 of the space's
+/// extent by default). The hull is never smaller than the mesh, so taking it
+/// only adds a skin at most this thick: no collision is lost, while a closed
+/// mesh loaded as triangles is hollow and loses every body inside it.
+constexpr double kDefaultMeshConvexTolerance = 1e-4;
+/// Largest LoadOptions::mesh_convex_tolerance: beyond 1% of its size a mesh is
+/// not "convex up to round-off"; ask for its hull (mesh_convex_hull) instead.
+constexpr double kMaxMeshConvexTolerance = 1e-2;
+
 struct LoadOptions {
   /// Curved primitives (cylinders, spheres) become circumscribed polytopes
   /// whose surface is within this distance of the true surface (world units,
@@ -37,6 +51,12 @@ struct LoadOptions {
   /// A non-convex mesh becomes its convex hull (one piece) instead of its
   /// triangles.
   bool mesh_convex_hull = false;
+  /// A mesh is loaded as one convex piece, its hull, when the hull differs
+  /// from it by at most this fraction of its bounding-box diagonal (see
+  /// meshPieces for the exact test); in [0, kMaxMeshConvexTolerance]. 0 keeps
+  /// only the round-off allowance (1e-6 of the diagonal plus 5e-7 of the
+  /// largest coordinate). The cfg key: mesh_convex_tolerance in [problem].
+  double mesh_convex_tolerance = kDefaultMeshConvexTolerance;
   /// loadBody and meshPieces: shift a mesh so that the mean of its vertices is
   /// the origin (OMPL.app's robot convention: the state is the pose of that
   /// point). Worlds and meshes inside a URDF are never shifted.
@@ -50,7 +70,15 @@ struct MeshInfo {
   /// Triangles that are not pieces: zero area, repeated or collinear corners,
   /// or (loaded as triangles) slivers the hull code cannot make a polytope of.
   int degenerate_triangles = 0;
-  bool convex = false;  ///< the mesh equals its convex hull (one kConvex piece)
+  bool convex = false;  ///< the mesh equals its convex hull within the tolerance (one kConvex piece)
+  /// Every edge is shared by exactly two triangles (corners matched by exact
+  /// position; degenerate triangles count, those with a repeated corner not):
+  /// the mesh encloses a volume. Loaded as triangles, such a mesh is hollow,
+  /// and `warnings` says so.
+  bool closed = false;
+  /// Closed, and each edge is used once in each direction (the triangles'
+  /// windings agree).
+  bool oriented = false;
   /// The hull that decides convexity could not be built (a qhull precision
   /// error): the mesh was loaded as triangles, and `warnings` says so.
   bool hull_failed = false;
@@ -67,35 +95,67 @@ struct MeshInfo {
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
 };
 
+/// How the meshes of a load went (loadBody, loadWorld; a URDF's mesh
+/// elements each count).
+struct MeshCounts {
+  int meshes = 0;  ///< mesh files (or URDF mesh elements) loaded
+  int convex = 0;  ///< loaded as one convex piece (convex within the tolerance, or mesh_convex_hull)
+  int soups = 0;   ///< loaded as triangle pieces
+  /// Of the soups, the closed ones (MeshInfo::closed): hollow, so a body
+  /// entirely inside one does not collide with it.
+  int closed_soups = 0;
+  /// Counts one mesh loaded with `info` (as its hull when `hull`).
+  void add(const MeshInfo& info, bool hull);
+  MeshCounts& operator+=(const MeshCounts& o);
+};
+
 /// Loads a robot: a URDF (.urdf, every collision element of every link, the
 /// joints taken as fixed at their origins) or a mesh file (any format assimp
 /// reads: .stl .obj .dae .ply ...). Pieces are in the body frame R (the URDF's
 /// root link frame, or the mesh file's frame shifted by -mean vertex when
 /// options.recentre_mesh). `warnings` (if not null) receives the meshes' load
-/// warnings (MeshInfo::warnings). Throws SceneError naming the file and the
-/// element when the file is unreadable, malformed (an XML file nested deeper
-/// than 256 elements included), unsupported or has no collision geometry.
+/// warnings (MeshInfo::warnings); `counts` (if not null) has the meshes
+/// added. Throws SceneError naming the file and the element when the file is
+/// unreadable, malformed (an XML file nested deeper than 256 elements
+/// included), unsupported or has no collision geometry, or when an option is
+/// out of range.
 RigidBody loadBody(const std::filesystem::path& file, const LoadOptions& options = {},
-                   std::vector<std::string>* warnings = nullptr);
+                   std::vector<std::string>* warnings = nullptr, MeshCounts* counts = nullptr);
 
 /// Loads a static world (URDF or mesh file, as loadBody but never recentred);
 /// pieces in the world frame W. A URDF world without collision geometry is an
 /// empty (free) world; a mesh file must contain triangles.
 World loadWorld(const std::filesystem::path& file, const LoadOptions& options = {},
-                std::vector<std::string>* warnings = nullptr);
+                std::vector<std::string>* warnings = nullptr, MeshCounts* counts = nullptr);
 
 /// The pieces of a mesh file in the owner frame O: every vertex v of the file
 /// (node transforms applied) becomes X_OM * (scale .* v - shift), where shift
 /// is the mean of the scaled vertices when options.recentre_mesh, else zero.
 ///
-/// A mesh equal to its convex hull (every triangle lies in a supporting plane
-/// of the hull, within 1e-6 of the mesh's bounding-box diagonal plus 5e-7 of
-/// its largest coordinate, since assimp stores floats; and the triangles'
-/// total area is the hull's surface area within a relative 1e-5) is one
-/// kConvex piece; any other mesh is one kTriangle piece per triangle, or its
-/// hull (kConvex) when options.mesh_convex_hull. Piece::origin is
-/// "<file name>: triangle i" (i counts the file's triangles from 0) or
-/// "<file name>: convex".
+/// A mesh equal to its convex hull H up to e = t * D + 5e-7 * M (t =
+/// max(options.mesh_convex_tolerance, 1e-6), D the bounding-box diagonal of
+/// its triangles, M their largest coordinate: assimp stores floats) is one
+/// kConvex piece, H; any other mesh is one kTriangle piece per triangle, or H
+/// when options.mesh_convex_hull. Piece::origin is "<file name>: triangle i"
+/// (i counts the file's triangles from 0) or "<file name>: convex". The test:
+///   1. every triangle has its three corners within e of one supporting plane
+///      of H (a plane of H's faces, or H's support plane along the triangle's
+///      normal): the triangle, inside H, is within e of H's boundary;
+///   2. the triangles cover H's boundary: either the mesh is closed and
+///      consistently oriented (MeshInfo::oriented) and the volume it encloses
+///      is more than e times H's surface area A (at least the volume of H's
+///      skin of depth e) and at least H's volume minus e * A; or their total
+///      area is A within a relative 1e-5 (meshes whose faces are split with
+///      T-junctions, which are not closed by shared edges, and bodies thinner
+///      than about 2e).
+/// H always holds the mesh. When 2 holds by volume, every point of H that the
+/// mesh does not enclose is within e of H's boundary: by 1 the mesh does not
+/// reach H's points deeper than e, which form one convex region, so they are
+/// all inside the mesh or all outside, and the enclosed volume, larger than
+/// the skin's, puts them inside. By area, the mesh's surface is as large as
+/// H's and lies within e of it (a hole would show as missing area).
+/// A closed mesh (MeshInfo::closed) loaded as triangles is hollow: a warning
+/// names the file and says so.
 ///
 /// Never a failed load for geometry that OMPL.app accepts:
 ///   - a triangle that is not a polytope (height below 1e-10 of its longest
@@ -116,8 +176,9 @@ World loadWorld(const std::filesystem::path& file, const LoadOptions& options = 
 /// or overflows assimp's 32-bit floats (|x| > 3.4e38), a file without
 /// triangles or none of whose triangles is a polytope, a triangle that is no
 /// sliver but that the hull code rejects (a small triangle far from the
-/// origin: skipping it would open a hole), and a hull asked for by
-/// options.mesh_convex_hull that cannot be built.
+/// origin: skipping it would open a hole), a hull asked for by
+/// options.mesh_convex_hull that cannot be built, and a
+/// mesh_convex_tolerance that is not a number in [0, kMaxMeshConvexTolerance].
 std::vector<Piece> meshPieces(const std::filesystem::path& file, const Eigen::Vector3d& scale,
                               const Eigen::Isometry3d& X_OM, const LoadOptions& options, MeshInfo* info = nullptr);
 

@@ -27,6 +27,12 @@
 //                               (R^2 for an SE(2)-style problem) with the same
 //                               position bounds; the goal's rotation must equal
 //                               the start's
+//   mesh_convex_tolerance = 1e-4
+//                               OURS: a mesh loads as one convex piece (its
+//                               hull) when the hull differs from it by at most
+//                               this fraction of its size (LoadOptions::
+//                               mesh_convex_tolerance; default 1e-4, in
+//                               [0, 1e-2])
 //   <any other key> = value     a parameter of OMPL's space information, e.g.
 //                               longest_valid_segment_fraction = 0.01, sampler
 //
@@ -123,6 +129,9 @@ struct ProblemConfig {
   std::optional<double> objective_threshold;
   std::optional<double> threshold;  ///< goal threshold (absent: kDefaultGoalThreshold)
   std::optional<double> solution_length;
+  /// mesh_convex_tolerance (ours): overrides LoadOptions::mesh_convex_tolerance
+  /// in loadProblemScene.
+  std::optional<double> mesh_convex_tolerance;
   /// Other [problem] keys, in order: parameters of OMPL's space information.
   std::vector<std::pair<std::string, std::string>> space_parameters;
   // [benchmark]
@@ -183,10 +192,22 @@ struct ProblemScene {
   /// skipped triangles, a convexity check that fell back to triangles), each
   /// naming its file; the caller shows them.
   std::vector<std::string> warnings;
+  /// How the robot's and the world's meshes were loaded (convex pieces,
+  /// triangle soups, closed soups).
+  MeshCounts robot_meshes;
+  MeshCounts world_meshes;
 };
 
+/// One line on the scene for the user: the robot's and the world's pieces
+/// (convex, triangles) and meshes, and the closed meshes loaded as hollow
+/// triangle soups, e.g. "robot 'car': 1 piece (1 convex), 1 mesh (1 convex);
+/// world 'maze': 1970 pieces (1970 triangles), 1 mesh (1 triangle soup, 1
+/// closed: hollow)".
+std::string sceneSummary(const ProblemScene& scene);
+
 /// Loads the robot (URDF: root link frame; mesh: recentred as OMPL.app does)
-/// and the world, and computes the bounds: config.volume, or the world's
+/// and the world (config.mesh_convex_tolerance, when given, replaces
+/// options.mesh_convex_tolerance), and computes the bounds: config.volume, or the world's
 /// bounding box widened to hold the start and goal positions (planar kinds:
 /// z = [0, 0]). Throws SceneError (prefixed with the cfg's name) from the
 /// loaders, for empty bounds, or for a translation-only config whose goal

@@ -14,13 +14,13 @@
 // Scaling (the planning tests' convention, test_support.h): at
 // MDDUAL_PLANNING_SCALE=1 (CI) 100 translating and 100 rotating edges per
 // config, 20 and 20 on the apartment (its dense FCL check, distances between
-// a 3,000- and a 40,000-triangle mesh, takes about 0.4 s per edge). The
-// issue's 10,000 edges per config (from the build directory):
+// a 3,000- and a 40,000-triangle mesh, is the slowest). The 10,000
+// edges per config (from the build directory):
 //   MDDUAL_PLANNING_SCALE=50 tests/configs/test_mesh_soundness --gtest_filter='*NoMisses*-*apartment*'
 //   MDDUAL_PLANNING_SCALE=250 tests/configs/test_mesh_soundness --gtest_filter='*NoMisses*apartment*'
-// (the second takes over an hour). MDDUAL_PLANNING_SEED=n draws another
-// sample. The counts and times measured with these commands are in README.md
-// (Planning layer, mesh configs).
+// (the apartment: 14 min wall, 9 min CPU). MDDUAL_PLANNING_SEED=n draws
+// another sample. The counts and times measured with these commands are in
+// README.md (Planning layer, mesh configs).
 #include <gtest/gtest.h>
 
 #include <ompl/base/ScopedState.h>
@@ -51,8 +51,8 @@ constexpr double kPi = 3.14159265358979323846;
 
 // ---- The sample (lengths in robot radii r, the robot's bounding radius) ----
 /// A config and its sample sizes at scale 1 (the whole test, five configs:
-/// 56 s wall and 23 s CPU in release on the shared two-core machine at load
-/// average 9).
+/// 16 s wall and 10 s CPU in release on the shared two-core machine at load
+/// average 5).
 struct SoundnessConfig {
   std::string name;
   int edges_per_kind;  ///< translating edges, and as many rotating ones
@@ -63,7 +63,7 @@ std::ostream& operator<<(std::ostream& out, const SoundnessConfig& c) {
 }
 const std::vector<SoundnessConfig> kSoundnessConfigs = {
     {"bugtrap", 100, 20},       {"twistycool", 100, 20},
-    {"cubicles_mesh", 100, 20}, {"apartment", 20, 2},  // the dense check's FCL distances are slow (above)
+    {"cubicles_mesh", 100, 20}, {"apartment", 20, 2},  // the slowest dense check (above)
     {"maze_planar", 100, 20},
 };
 /// Least share of colliding and of free edges of each kind: below it, the

@@ -10,14 +10,13 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <numeric>
-#include <sstream>
 
 #include "mddual/query.h"
 #include "mddual/scene/loaders.h"
 #include "mddual/scene/problem_config.h"
+#include "witness_path.h"
 
 namespace mddual::scene {
 namespace {
@@ -183,29 +182,6 @@ Topology topology(const std::vector<Piece>& pieces) {
   return out;
 }
 
-/// The states of witness_path.txt as poses of the robot frame.
-std::vector<Eigen::Isometry3d> witnessPath(const std::string& name, SpaceKind space) {
-  const fs::path file = kConfigs / name / "witness_path.txt";
-  std::ifstream in(file);
-  EXPECT_TRUE(in.good()) << file;
-  std::vector<Eigen::Isometry3d> states;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    PoseSpec pose;
-    if (isPlanar(space)) {
-      fields >> pose.position.x() >> pose.position.y() >> pose.theta;
-    } else {
-      fields >> pose.position.x() >> pose.position.y() >> pose.position.z() >> pose.axis.x() >> pose.axis.y() >>
-          pose.axis.z() >> pose.theta;
-    }
-    EXPECT_FALSE(fields.fail()) << file << ": " << line;
-    states.push_back(toIsometry(pose, space));
-  }
-  return states;
-}
-
 bool samePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   return (a.translation() - b.translation()).norm() <= kPoseMatch &&
          Eigen::Quaterniond(a.linear()).angularDistance(Eigen::Quaterniond(b.linear())) <= kPoseMatch;
@@ -262,7 +238,7 @@ void checkMeshes(const MeshConfig& c, const ProblemScene& s) {
 
 /// witness_path.txt goes from start to goal without a collision.
 void checkWitnessPath(const MeshConfig& c, const ProblemScene& s) {
-  const std::vector<Eigen::Isometry3d> path = witnessPath(c.name, c.space);
+  const std::vector<Eigen::Isometry3d> path = testing::witnessPath(kConfigs / c.name / "witness_path.txt", c.space);
   ASSERT_GE(path.size(), 2u);
   EXPECT_TRUE(samePose(path.front(), s.start));
   EXPECT_TRUE(samePose(path.back(), s.goal));

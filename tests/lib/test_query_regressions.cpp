@@ -272,5 +272,50 @@ TEST(QueryRegressions, PosesBeyondTheSupportedRangeAreNamed) {
   }
 }
 
+// Found by the mesh configs' soundness sweep (tests/configs/
+// test_mesh_soundness.cpp, maze_planar, MDDUAL_PLANNING_SCALE=50; not yet
+// fixed, hence DISABLED_: run with --gtest_also_run_disabled_tests). Two
+// vertical triangles (world: x = 11.875; robot: a triangle of the maze robot
+// in its body frame, two vertices one above the other), queried along two
+// translation edges of the planner with one WarmStart, as MddScene does per
+// pair and thread: after the first query, the second toi() is 0.0339 early
+// (0.68872 instead of 0.72262, which the cold query gives and an FCL
+// bisection of the edge confirms). A warm start may only change the speed.
+TEST(QueryRegressions, DISABLED_WarmStartFromAnotherPoseKeepsTheToi) {
+  const ConvexPolytope a =
+      ConvexPolytope::fromPoints({{11.875, 13.875, 0.5}, {11.875, 14.125, -0.5}, {11.875, 14.125, 0.5}});
+  const ConvexPolytope b =
+      ConvexPolytope::fromPoints({{0.24859311214337745, -0.2056179940700531, -0.20000000298023224},
+                                  {0.27111210456738871, 0, 0.20000000298023224},
+                                  {0.24859311214337745, -0.2056179940700531, 0.20000000298023224}});
+  const auto pose = [](double x, double y, double qw, double qz) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.translation() = Eigen::Vector3d(x, y, 0);
+    X.linear() = Eigen::Quaterniond(qw, 0, 0, qz).normalized().toRotationMatrix();
+    return X;
+  };
+  const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+  DirectionalInput first{&a,
+                         I,
+                         &b,
+                         pose(10.919814241864696, 13.767155869968731, 0.98980246348703427, 0.14244677348047707),
+                         {0.84212834365750067, 0.53927715769228923, 0}};
+  first.max_distance = 1.6955338918155691;
+  DirectionalInput second{&a,
+                          I,
+                          &b,
+                          pose(10.926912118014048, 14.390465041027468, 0.99583697635839641, -0.091152161342266808),
+                          {0.98948620059553971, -0.14462731011466418, 0}};
+  second.max_distance = 1.3728998237483596;
+  const ToiResult cold = toi(second);
+  ASSERT_EQ(cold.status, ToiStatus::kHit);
+  EXPECT_NEAR(cold.toi, 0.7226214933036319, 1e-12);
+  WarmStart warm;
+  toi(first, &warm);
+  const ToiResult hot = toi(second, &warm);
+  EXPECT_EQ(hot.status, cold.status);
+  EXPECT_NEAR(hot.toi, cold.toi, 1e-9);  // measured: 0.68872205014173626
+}
+
 }  // namespace
 }  // namespace mddual::testing

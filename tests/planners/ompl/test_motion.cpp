@@ -1,7 +1,8 @@
 // MddMotionValidator: soundness against a dense FCL check on random edges of
-// the four scenes (zero misses), exact first contacts on translation edges
+// the scenes (zero misses), exact first contacts on translation edges
 // (against an FCL bisection, to 1e-9 of the edge), lastValid per OMPL's
-// contract, the thin wall OMPL's discrete check passes through, and the FCL
+// contract (testing::checkEdge, shared with tests/configs/
+// test_mesh_soundness.cpp), the thin wall OMPL's discrete check passes through, and the FCL
 // continuous validator on the same edges.
 #include <gtest/gtest.h>
 
@@ -9,7 +10,6 @@
 #include <ompl/base/ScopedState.h>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 #include "mddual/generators.h"
 #include "test_support.h"
@@ -18,119 +18,9 @@ namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
+using testing::EdgeTally;
 using testing::Fixture;
-constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
-/// Dense check resolution, as a fraction of the edge.
-constexpr double kDenseStep = 1e-4;
-
-struct EdgeTally {
-  int edges = 0;
-  int valid = 0;
-  int misses = 0;  // ours valid, the dense FCL check finds a collision
-  int early = 0;   // an FCL-invalid state before our first-contact fraction (bound)
-  int fraction_checked = 0;
-  int fraction_errors = 0;  // translation edges: |ours - FCL bisection| > 1e-9
-  int grazing = 0;          // our contact is a touch that FCL samples do not see
-  int false_alarms = 0;     // rotating edges: ours invalid, the dense check finds nothing
-  int samples = 0;
-  double worst_fraction_error = 0.0;
-};
-
-/// The first FCL-invalid fraction near `f` (to the right), or +inf.
-double fclInvalidNear(const Fixture& fx, const ob::State* s1, const ob::State* s2, double f) {
-  for (double eps = 1e-11; eps <= 1e-4; eps *= 4.0) {
-    const double t = std::min(1.0, f + eps);
-    if (!testing::fclValidAt(fx, s1, s2, t)) return t;
-    if (t == 1.0) break;
-  }
-  return kInf;
-}
-
-void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, EdgeTally* tally) {
-  ++tally->edges;
-  const MddMotionValidator& mv = *fx.mdd_motion;
-  const bool valid = mv.checkMotion(s1, s2);
-  ob::ScopedState<> last(fx.space->stateSpace());
-  std::pair<ob::State*, double> lv(last.get(), -1.0);
-  EXPECT_EQ(mv.checkMotion(s1, s2, lv), valid) << fx.scene.name << " edge " << tally->edges;
-  const EdgeMotion motion = fx.space->motion(s1, s2);
-  if (valid) {
-    ++tally->valid;
-    EXPECT_EQ(lv.second, -1.0) << "lastValid touched on a valid edge";
-    const double t = testing::denseFirstInvalid(fx, s1, s2, 0.0, kDenseStep, &tally->samples);
-    if (t != kInf) {
-      ob::ScopedState<> st(fx.space->stateSpace());
-      fx.space->stateSpace()->interpolate(s1, s2, t, st.get());
-      const Eigen::Isometry3d X = fx.space->pose(st.get());
-      const double d = testing::distanceToTouching(*fx.mdd, X, 1e-6);
-      if (d > testing::touchTolerance(*fx.mdd, X)) {
-        ++tally->misses;
-        ADD_FAILURE() << fx.scene.name << ": MISS, edge valid for MDD but FCL collides at t = " << t
-                      << " (distance to touching " << d << ", rotates " << motion.rotates() << ")";
-      }
-    }
-    return;
-  }
-  // Invalid: lastValid is a valid state before the first invalid fraction.
-  const EdgeContact first = mv.firstInvalid(s1, s2);
-  ASSERT_TRUE(first.collides);
-  EXPECT_GE(lv.second, 0.0);
-  EXPECT_LE(lv.second, first.fraction);
-  EXPECT_TRUE(fx.si->isValid(last.get())) << "lastValid is not valid";
-  if (lv.second < first.fraction) {
-    EXPECT_LE(first.fraction - lv.second, 1e-3)
-        << "lastValid backed off far (" << lv.second << " vs " << first.fraction << ")";
-  }
-  if (first.start_collides) return;
-  // No FCL-invalid state before our first invalid fraction (exact or a bound).
-  const double t_fcl = testing::denseFirstInvalid(fx, s1, s2, 0.0, kDenseStep, &tally->samples);
-  if (t_fcl < first.fraction - 1e-9) {
-    ob::ScopedState<> st(fx.space->stateSpace());
-    fx.space->stateSpace()->interpolate(s1, s2, t_fcl, st.get());
-    const Eigen::Isometry3d X = fx.space->pose(st.get());
-    if (testing::distanceToTouching(*fx.mdd, X, 1e-6) > testing::touchTolerance(*fx.mdd, X)) {
-      ++tally->early;
-      ADD_FAILURE() << fx.scene.name << ": FCL collides at t = " << t_fcl << " before our first contact "
-                    << first.fraction << " (rotates " << motion.rotates() << ")";
-    }
-    return;
-  }
-  if (motion.rotates()) {
-    if (t_fcl == kInf) ++tally->false_alarms;
-    return;
-  }
-  // Translation edge: the exact fraction against an FCL bisection.
-  ++tally->fraction_checked;
-  double hi = fclInvalidNear(fx, s1, s2, first.fraction);
-  if (hi == kInf) {
-    // FCL sees no collision just after our contact: a grazing touch. Check it
-    // is one on the brute force.
-    const Eigen::Isometry3d X = motion.pose(first.fraction);
-    const double d = first.contact.robot_piece < 0 ? 0.0 : testing::distanceToTouching(*fx.mdd, X, 1e-6);
-    if (d <= 10 * testing::touchTolerance(*fx.mdd, X)) {
-      ++tally->grazing;
-    } else {
-      ++tally->fraction_errors;
-      ADD_FAILURE() << fx.scene.name << ": no FCL collision after our first contact " << first.fraction
-                    << " (distance to touching there " << d << ")";
-    }
-    return;
-  }
-  const double lo = std::max(0.0, first.fraction - 1e-6);
-  if (!testing::fclValidAt(fx, s1, s2, lo)) {
-    ++tally->fraction_errors;
-    ADD_FAILURE() << fx.scene.name << ": FCL invalid at " << lo << " before our first contact " << first.fraction;
-    return;
-  }
-  const double f_fcl = testing::fclBisect(fx, s1, s2, lo, hi, 1e-13);
-  const double err = std::abs(f_fcl - first.fraction);
-  tally->worst_fraction_error = std::max(tally->worst_fraction_error, err);
-  if (err > 1e-9) {
-    ++tally->fraction_errors;
-    ADD_FAILURE() << fx.scene.name << ": first contact " << first.fraction << ", FCL bisection " << f_fcl;
-  }
-}
 
 class MotionSoundness : public ::testing::TestWithParam<int> {};
 
@@ -152,17 +42,13 @@ TEST_P(MotionSoundness, NoMissesAndExactTranslationContacts) {
       // Short and long edges, and pure rotations.
       const double max_length = rotate && i % 5 == 1 ? 0.0 : (i % 3 == 0 ? 0.05 : 0.3) * extent;
       testing::randomEdgeEnd(*fx.space, s1.get(), max_length, rotate, kPi, rng, s2.get());
-      checkEdge(fx, s1.get(), s2.get(), rotate ? &rotation : &translation);
+      testing::checkEdge(fx, s1.get(), s2.get(), rotate ? &rotation : &translation);
     }
   }
   for (const EdgeTally* t : {&translation, &rotation}) {
     if (t->edges == 0) continue;
-    std::printf(
-        "%-10s %s %s edges: %d, valid %d, misses %d, early %d, fractions checked %d (errors %d, grazing %d, "
-        "worst %.2e), rotating false alarms %d, FCL samples %d\n",
-        scene.name.c_str(), toString(fx.space->kind()), t == &translation ? "translation" : "rotating", t->edges,
-        t->valid, t->misses, t->early, t->fraction_checked, t->fraction_errors, t->grazing, t->worst_fraction_error,
-        t->false_alarms, t->samples);
+    std::printf("%-10s %s %s %s\n", scene.name.c_str(), toString(fx.space->kind()),
+                t == &translation ? "translation" : "rotating", testing::describe(*t).c_str());
     EXPECT_EQ(t->misses, 0);
     EXPECT_EQ(t->early, 0);
     EXPECT_EQ(t->fraction_errors, 0);

@@ -1,11 +1,14 @@
 #include "test_support.h"
 
+#include <gtest/gtest.h>
+
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -26,6 +29,8 @@ namespace {
 namespace ob = ompl::base;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPi = 3.14159265358979323846;
+/// checkEdge's dense FCL check: the sample step, as a fraction of the edge.
+constexpr double kDenseEdgeStep = 1e-4;
 
 long envInt(const char* name, long fallback) {
   const char* v = std::getenv(name);
@@ -49,6 +54,16 @@ double originToFace(const ConvexPolytope& p, int f) {
     best = std::min(best, (a + s * (b - a)).norm());
   }
   return inside ? std::abs(n.dot(p.vertex(loop[0]))) : best;
+}
+
+/// The first FCL-invalid fraction near `f` (to the right), or +inf.
+double fclInvalidNear(const Fixture& fx, const ob::State* s1, const ob::State* s2, double f) {
+  for (double eps = 1e-11; eps <= 1e-4; eps *= 4.0) {
+    const double t = std::min(1.0, f + eps);
+    if (!fclValidAt(fx, s1, s2, t)) return t;
+    if (t == 1.0) break;
+  }
+  return kInf;
 }
 
 }  // namespace
@@ -160,15 +175,15 @@ examples::ExampleScene fromFiles(const std::string& name, scene::RigidBody robot
   return s;
 }
 
-examples::ExampleScene fromConfig(const std::string& name) {
+}  // namespace
+
+examples::ExampleScene configScene(const std::string& name) {
   const scene::ProblemConfig config =
       scene::readProblemConfig(fs::path(MDDUAL_CONFIGS_DIR) / name / (name + ".cfg"), {"mdd_rrtconnect"});
   scene::ProblemScene p = scene::loadProblemScene(config);
   const SpaceKind kind = p.space == scene::SpaceKind::kSE2 ? SpaceKind::kSE2 : SpaceKind::kSE3;
   return fromFiles(name, std::move(p.robot), std::move(p.world), p.bounds, kind);
 }
-
-}  // namespace
 
 std::vector<examples::ExampleScene> fileScenes(std::uint64_t s) {
   Rng rng(s * 7919 + 11);
@@ -215,7 +230,7 @@ std::vector<examples::ExampleScene> fileScenes(std::uint64_t s) {
   writeFile(dir / "robot.obj", lPrismsObj({Eigen::Isometry3d::Identity()}, 0.35));
   examples::ExampleScene mesh_scene = fromFiles("meshfile", scene::loadBody(dir / "robot.obj"),
                                                 scene::loadWorld(dir / "world.obj"), cube, SpaceKind::kSE3);
-  return {urdf_scene, mesh_scene, fromConfig("maze_se2"), fromConfig("cubicles")};
+  return {urdf_scene, mesh_scene, configScene("maze_se2"), configScene("cubicles")};
 }
 
 const std::vector<examples::ExampleScene>& allScenes() {
@@ -369,6 +384,117 @@ double fclBisect(const Fixture& fx, const ob::State* s1, const ob::State* s2, do
     }
   }
   return hi;
+}
+
+std::string describe(const EdgeTally& t) {
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "edges: %d, valid %d, misses %d, early %d, fractions checked %d (errors %d, grazing %d, worst %.2e), "
+                "rotating false alarms %d, FCL samples %d",
+                t.edges, t.valid, t.misses, t.early, t.fraction_checked, t.fraction_errors, t.grazing,
+                t.worst_fraction_error, t.false_alarms, t.samples);
+  return line;
+}
+
+std::string edgeString(const Fixture& fx, const ob::State* s1, const ob::State* s2) {
+  std::ostringstream o;
+  o.precision(17);
+  o << "\n  edge (" << toString(fx.space->kind()) << ", x y z qw qx qy qz):";
+  for (const ob::State* s : {s1, s2}) {
+    const Eigen::Isometry3d X = fx.space->pose(s);
+    const Eigen::Quaterniond q(X.linear());
+    o << "\n    " << X.translation().x() << " " << X.translation().y() << " " << X.translation().z() << " " << q.w()
+      << " " << q.x() << " " << q.y() << " " << q.z();
+  }
+  return o.str();
+}
+
+void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, EdgeTally* tally) {
+  ++tally->edges;
+  const MddMotionValidator& mv = *fx.mdd_motion;
+  const bool valid = mv.checkMotion(s1, s2);
+  ob::ScopedState<> last(fx.space->stateSpace());
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_EQ(mv.checkMotion(s1, s2, lv), valid) << fx.scene.name << " edge " << tally->edges << edgeString(fx, s1, s2);
+  const EdgeMotion motion = fx.space->motion(s1, s2);
+  if (valid) {
+    ++tally->valid;
+    EXPECT_EQ(lv.second, -1.0) << "lastValid touched on a valid edge" << edgeString(fx, s1, s2);
+    const double t = denseFirstInvalid(fx, s1, s2, 0.0, kDenseEdgeStep, &tally->samples);
+    if (t != kInf) {
+      ob::ScopedState<> st(fx.space->stateSpace());
+      fx.space->stateSpace()->interpolate(s1, s2, t, st.get());
+      const Eigen::Isometry3d X = fx.space->pose(st.get());
+      const double d = distanceToTouching(*fx.mdd, X, 1e-6);
+      if (d > touchTolerance(*fx.mdd, X)) {
+        ++tally->misses;
+        ADD_FAILURE() << fx.scene.name << ": MISS, edge valid for MDD but FCL collides at t = " << t
+                      << " (distance to touching " << d << ", rotates " << motion.rotates() << ")"
+                      << edgeString(fx, s1, s2);
+      }
+    }
+    return;
+  }
+  // Invalid: lastValid is a valid state before the first invalid fraction.
+  const EdgeContact first = mv.firstInvalid(s1, s2);
+  ASSERT_TRUE(first.collides);
+  EXPECT_GE(lv.second, 0.0) << edgeString(fx, s1, s2);
+  EXPECT_LE(lv.second, first.fraction) << edgeString(fx, s1, s2);
+  EXPECT_TRUE(fx.si->isValid(last.get())) << "lastValid is not valid" << edgeString(fx, s1, s2);
+  if (lv.second < first.fraction) {
+    EXPECT_LE(first.fraction - lv.second, 1e-3)
+        << "lastValid backed off far (" << lv.second << " vs " << first.fraction << ")" << edgeString(fx, s1, s2);
+  }
+  if (first.start_collides) return;
+  // No FCL-invalid state before our first invalid fraction (exact or a bound).
+  const double t_fcl = denseFirstInvalid(fx, s1, s2, 0.0, kDenseEdgeStep, &tally->samples);
+  if (t_fcl < first.fraction - 1e-9) {
+    ob::ScopedState<> st(fx.space->stateSpace());
+    fx.space->stateSpace()->interpolate(s1, s2, t_fcl, st.get());
+    const Eigen::Isometry3d X = fx.space->pose(st.get());
+    if (distanceToTouching(*fx.mdd, X, 1e-6) > touchTolerance(*fx.mdd, X)) {
+      ++tally->early;
+      ADD_FAILURE() << fx.scene.name << ": FCL collides at t = " << t_fcl << " before our first contact "
+                    << first.fraction << " (rotates " << motion.rotates() << ")" << edgeString(fx, s1, s2);
+    }
+    return;
+  }
+  if (motion.rotates()) {
+    if (t_fcl == kInf) ++tally->false_alarms;
+    return;
+  }
+  // Translation edge: the exact fraction against an FCL bisection.
+  ++tally->fraction_checked;
+  double hi = fclInvalidNear(fx, s1, s2, first.fraction);
+  if (hi == kInf) {
+    // FCL sees no collision just after our contact: a grazing touch. Check it
+    // is one on the brute force.
+    const Eigen::Isometry3d X = motion.pose(first.fraction);
+    const double d = first.contact.robot_piece < 0 ? 0.0 : distanceToTouching(*fx.mdd, X, 1e-6);
+    if (d <= 10 * touchTolerance(*fx.mdd, X)) {
+      ++tally->grazing;
+    } else {
+      ++tally->fraction_errors;
+      ADD_FAILURE() << fx.scene.name << ": no FCL collision after our first contact " << first.fraction
+                    << " (distance to touching there " << d << ")" << edgeString(fx, s1, s2);
+    }
+    return;
+  }
+  const double lo = std::max(0.0, first.fraction - 1e-6);
+  if (!fclValidAt(fx, s1, s2, lo)) {
+    ++tally->fraction_errors;
+    ADD_FAILURE() << fx.scene.name << ": FCL invalid at " << lo << " before our first contact " << first.fraction
+                  << edgeString(fx, s1, s2);
+    return;
+  }
+  const double f_fcl = fclBisect(fx, s1, s2, lo, hi, 1e-13);
+  const double err = std::abs(f_fcl - first.fraction);
+  tally->worst_fraction_error = std::max(tally->worst_fraction_error, err);
+  if (err > 1e-9) {
+    ++tally->fraction_errors;
+    ADD_FAILURE() << fx.scene.name << ": first contact " << first.fraction << ", FCL bisection " << f_fcl
+                  << edgeString(fx, s1, s2);
+  }
 }
 
 }  // namespace mddual::planning::testing

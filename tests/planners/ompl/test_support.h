@@ -1,7 +1,9 @@
-// Shared by the tests of the OMPL layer: the scenes, OMPL set-ups with the MDD
-// and FCL checkers over the same pieces, seeded random states and edges, and
-// the independent measures the comparisons rest on (brute-force distance to
-// touching, a dense FCL check of an edge, an FCL bisection of a first contact).
+// Shared by the tests of the OMPL layer (and by the mesh configs' soundness
+// test, tests/configs): the scenes, OMPL set-ups with the MDD and FCL checkers
+// over the same pieces, seeded random states and edges, the independent
+// measures the comparisons rest on (brute-force distance to touching, a dense
+// FCL check of an edge, an FCL bisection of a first contact) and the edge
+// check built on them (checkEdge).
 //
 // Scaling: MDDUAL_PLANNING_SCALE=k multiplies every sample count by k (the CI
 // runs k = 1), MDDUAL_PLANNING_SEED=n changes the seed of scenes and samples.
@@ -12,6 +14,7 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "mddual/planning/example_scenes.h"
@@ -55,6 +58,10 @@ std::vector<examples::ExampleScene> standardScenes(std::uint64_t seed);
 /// non-convex OBJ world and robot (triangles; SE(3)), and the configs
 /// configs/maze_se2 (SE(2)) and configs/cubicles (SE(3)).
 std::vector<examples::ExampleScene> fileScenes(std::uint64_t seed);
+
+/// configs/NAME/NAME.cfg loaded through the scene loaders, in the config's
+/// space (SE(2) or SE(3)) and bounds.
+examples::ExampleScene configScene(const std::string& name);
 
 /// standardScenes(seed()), fileScenes(seed()), then examples::trapScene()
 /// (a mesh of OMPL.app's bug-trap size), built once: kSceneCount scenes;
@@ -103,5 +110,40 @@ double fclBisect(const Fixture& fx, const ompl::base::State* s1, const ompl::bas
                  double width);
 /// Whether the FCL checker accepts the state at fraction t of the edge.
 bool fclValidAt(const Fixture& fx, const ompl::base::State* s1, const ompl::base::State* s2, double t);
+
+/// What checkEdge found on a sample of edges.
+struct EdgeTally {
+  int edges = 0;
+  int valid = 0;
+  int misses = 0;  ///< ours valid, the dense FCL check finds a collision
+  int early = 0;   ///< an FCL-invalid state before our first-contact fraction (bound)
+  int fraction_checked = 0;
+  int fraction_errors = 0;  ///< translation edges: |ours - FCL bisection| > 1e-9
+  int grazing = 0;          ///< our contact is a touch that FCL samples do not see
+  int false_alarms = 0;     ///< rotating edges: ours invalid, the dense check finds nothing
+  int samples = 0;          ///< states the dense FCL checks sampled
+  double worst_fraction_error = 0.0;
+};
+/// The tally in one line (for the test's output).
+std::string describe(const EdgeTally& t);
+
+/// Checks fx's MddMotionValidator on the edge s1 -> s2 against the measures
+/// above, counting into `tally` and failing the test (ADD_FAILURE, with the
+/// edge in full precision) on:
+///  - a miss: the edge valid for us, the dense FCL check (denseFirstInvalid at
+///    1e-4 of the edge) finds an invalid state that is not within
+///    touchTolerance of touching on the brute force;
+///  - an invalid edge whose lastValid is not a valid state at or before our
+///    first invalid fraction (within 1e-3 of it), or a valid edge whose
+///    lastValid is touched (OMPL's contract);
+///  - an FCL collision before our first invalid fraction (exact or a bound);
+///  - translation edges: a first contact more than 1e-9 of the edge from an
+///    FCL bisection to 1e-13 (a touch FCL does not see counts as grazing when
+///    it is one on the brute force).
+void checkEdge(const Fixture& fx, const ompl::base::State* s1, const ompl::base::State* s2, EdgeTally* tally);
+
+/// The edge s1 -> s2 as poses in full precision (position, then the
+/// quaternion w x y z), for pinning it as a regression case.
+std::string edgeString(const Fixture& fx, const ompl::base::State* s1, const ompl::base::State* s2);
 
 }  // namespace mddual::planning::testing

@@ -201,8 +201,10 @@ struct BvhStats {
 /// Tree against tree, with the set of b placed at X_AB in a's frame and b's
 /// volumes grown by margin_b >= 0 (each half extent and radius; a grown
 /// volume holds every point within margin_b of the volume): calls
-/// fn(piece_a, piece_b) for the pairs whose volumes (sphere and oriented box)
-/// overlap at every pair of nodes on the way down to their leaves, until fn
+/// fn(piece_a, piece_b) for the pairs whose volumes overlap at every pair of
+/// nodes on the way down to their leaves (spheres and boxes at every pair;
+/// oriented boxes at the leaves and where one is much tighter than its
+/// axis-aligned box), until fn
 /// returns false. These are some of the pairs whose leaf volumes overlap, and
 /// they include every pair whose pieces come within margin_b of each other
 /// (touching included). Returns false when fn stopped it.

@@ -172,6 +172,13 @@ Eigen::Isometry3d World::piecePose(int id) const {
 }
 
 int World::addPiece(Piece piece) {
+  // A default-made piece has no polytope; the derived fields (box, centre,
+  // radius) are recomputed so that a hand-made Piece cannot give the broad
+  // phase a box that disagrees with its polytope.
+  if (piece.polytope.numVertices() == 0) {
+    throw SceneError("World::addPiece: the piece '" + piece.origin + "' has no polytope (no vertices)");
+  }
+  piece = Piece::make(std::move(piece.polytope), piece.kind, std::move(piece.origin));
   const int id = idLimit();
   const int index = static_cast<int>(pieces_.size());
   pieces_.push_back(std::move(piece));

@@ -393,7 +393,13 @@ TEST(WorldUpdates, BadUpdatesAreRefusedAndLeaveTheSceneAsItWas) {
   nan.translation().y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(mdd.moveWorldPiece(4, nan), InvalidInputError);
   EXPECT_THROW(mdd.moveWorldPiece(-1, Eigen::Isometry3d::Identity()), InvalidInputError);
+  // A piece without a polytope is refused before anything changes; a valid
+  // piece added after it is seen by every query (review finding: the bad
+  // piece used to stay in the world and block the trees' refresh).
+  EXPECT_THROW(mdd.addWorldPiece(scene::Piece{}), InvalidInputError);
   ASSERT_EQ(static_cast<int>(mdd.world().pieces().size()), n - 1);
+  mdd.addWorldPiece(scene.world->pieces()[3]);
+  ASSERT_EQ(static_cast<int>(mdd.world().pieces().size()), n);
   const MddScene rebuilt(scene.robot, std::make_shared<scene::World>(mdd.world().pieces(), "rebuilt"));
   testing::Rng rng(testing::seed() * 13);
   UpdateStats stats;

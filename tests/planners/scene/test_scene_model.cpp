@@ -222,6 +222,16 @@ TEST(WorldUpdates, BadIdsAndPosesAreRefusedWithoutChange) {
   expectInvalid([&] { world.movePiece(1, nan); }, "non-finite");
   EXPECT_EQ(world.pieces()[0].polytope.vertices(), before);
   EXPECT_TRUE(world.piecePose(1).isApprox(Eigen::Isometry3d::Identity()));
+  // A piece without a polytope is refused; a hand-made piece's box is
+  // recomputed from its polytope (the broad phase searches by box).
+  const std::size_t count = world.pieces().size();
+  expectInvalid([&] { world.addPiece(Piece{}); }, "has no polytope");
+  EXPECT_EQ(world.pieces().size(), count);
+  Piece odd = world.pieces()[0];
+  const Eigen::AlignedBox3d true_box = odd.box;
+  odd.box = Eigen::AlignedBox3d(Eigen::Vector3d::Constant(100.0), Eigen::Vector3d::Constant(101.0));
+  const int id = world.addPiece(odd);
+  EXPECT_TRUE(world.pieces()[static_cast<std::size_t>(world.indexOf(id))].box.isApprox(true_box));
 }
 
 }  // namespace

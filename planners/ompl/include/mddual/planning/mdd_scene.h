@@ -216,7 +216,9 @@ class MddScene {
   /// refinementLevels()]. Built on first use (two small hulls per piece and
   /// level: on a robot of 3,000 triangles building all of them up front took
   /// most of a scene's set-up), thread-safe; the reference stays valid for
-  /// the scene's lifetime.
+  /// the scene's lifetime. A failure to build one (a hull error; not seen on
+  /// any scene, a piece grown by a ball is full-dimensional) therefore comes
+  /// from the query that first needs it, not from the constructor.
   const scene::Piece& enlargedPiece(int level, int i) const;
   /// Number of equal time intervals of a rotating edge that would keep every
   /// robot point within delta of its interval's middle orientation (the

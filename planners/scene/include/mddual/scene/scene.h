@@ -132,7 +132,9 @@ class World {
 
   // ---- Updates (see the class comment). Each throws InvalidInputError for
   // an unknown id and leaves the world unchanged when it throws.
-  /// Adds a piece (frame W) at the end of pieces(); returns its id.
+  /// Adds a piece (frame W) at the end of pieces(); returns its id. Its
+  /// box, centre and radius are recomputed from its polytope; a piece without
+  /// a polytope (no vertices) is refused (SceneError).
   int addPiece(Piece piece);
   /// Removes piece `id`.
   void removePiece(int id);

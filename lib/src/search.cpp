@@ -21,7 +21,12 @@
 // the dual polytope M* and ends at the global optimum whatever the first two
 // phases did. The current features are read off the face normal with a small
 // tie tolerance, so that a face whose supporting feature is an edge or a face
-// of A or B (boxes in the same orientation) sees all its neighbours.
+// of A or B (boxes in the same orientation) sees all its neighbours. A generic
+// FV face with an edge parallel to an edge of B at its vertex has a VF face
+// across that edge (no EE face exists there), VF symmetrically: before such
+// a face is taken as the optimum, the other body's facets at its vertex are
+// evaluated too. A warm start, which skips SEARCH-FV and SEARCH-VF, relies on
+// this last phase alone.
 #include "search.h"
 
 #include <algorithm>
@@ -126,6 +131,9 @@ class Searcher {
   Candidate searchEE(Candidate current);
   /// Evaluates the faces across the edges of a generic face; true on an early exit.
   bool edgeNeighbours(const Candidate& current, Candidate* best);
+  /// Evaluates the faces of M made of the other polytope's facets at the
+  /// named vertex of a generic FV or VF face; true on an early exit.
+  bool parallelEdgeNeighbours(const Candidate& current, Candidate* best);
   void collectEdges(const std::vector<int>& ties, bool of_b, std::vector<EdgeInA>* out) const;
   EdgeInA edgeInA(int e, bool of_b) const;
 
@@ -435,6 +443,33 @@ bool Searcher::edgeNeighbours(const Candidate& current, Candidate* best) {
   return false;
 }
 
+bool Searcher::parallelEdgeNeighbours(const Candidate& current, Candidate* best) {
+  // An edge e of facet f of A parallel to an edge e_b of B at v: the arcs of
+  // e and -e_b lie on one great circle, so they do not cross and there is no
+  // EE(e, e_b) face. The face of M across the edge e - v of FV(f, v) is then
+  // e + (a facet of -B at v holding e_b): a VF face, which edgeNeighbours
+  // does not name (VF symmetrically). Extruded meshes (vertical edges on both
+  // bodies) have such pairs everywhere. Every face of M across an edge of
+  // FV(f, v) has features containing e (or f') and v, so the facets of B at
+  // v complete the set. EE faces need nothing more: an edge of B at an end
+  // of e_b parallel to e_a spans with e_b a facet of B at e_b, whose VF face
+  // edgeNeighbours already names (A symmetrically).
+  if (current.face.kind == FaceOfM::Kind::kFV) {
+    for (int f : b_.vertexFaces(current.vb)) {
+      if (!s_.visited.insert(keyOf(FaceOfM::Kind::kVF, 0, f))) continue;
+      Candidate c;
+      if (evalVF(f, current.va, *best, &c) && take(c, Phase::kEE, best)) return true;
+    }
+  } else if (current.face.kind == FaceOfM::Kind::kVF) {
+    for (int f : a_.vertexFaces(current.va)) {
+      if (!s_.visited.insert(keyOf(FaceOfM::Kind::kFV, f, 0))) continue;
+      Candidate c;
+      if (evalFV(f, current.vb, *best, &c) && take(c, Phase::kEE, best)) return true;
+    }
+  }
+  return false;
+}
+
 Candidate Searcher::searchEE(Candidate current) {
   // Ties within `tie` name the current face's features. A face that is
   // planar only to round-off (nearly coplanar hull facets, points rounded far
@@ -452,6 +487,11 @@ Candidate Searcher::searchEE(Candidate current) {
     if (current.generic && !verify) {
       Candidate best = current;
       if (edgeNeighbours(current, &best)) return best;
+      // A local optimum over the edge neighbours: before it is taken, the
+      // faces across edges parallel to an edge of the other polytope (once
+      // per optimum, not per step; a warm start relies on this alone, a cold
+      // one usually met them in SEARCH-VF).
+      if (!(best.phi > current.phi) && parallelEdgeNeighbours(current, &best)) return best;
       if (!(best.phi > current.phi)) {
         if (!current.nearly_degenerate) return current;
         verify = true;

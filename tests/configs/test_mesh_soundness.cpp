@@ -270,11 +270,11 @@ void planarState(const Fixture& fx, double x, double y, double qw, double qz, ob
 // edge 2,588; 6 such edges in 5,000 translating ones): a translation edge's
 // first contact 0.0247 of the edge (3.4 cm) early after an earlier edge (1,708)
 // left a warm start on the same pair of triangles (robot 26, world 260). The
-// core's toi() with that warm start is wrong (pinned in tests/lib/
+// core's toi() with that warm start was wrong (pinned in tests/lib/
 // test_query_regressions.cpp, QueryRegressions.
-// DISABLED_WarmStartFromAnotherPoseKeepsTheToi). Conservative (no miss) but
-// not exact. Not yet fixed, hence DISABLED_.
-TEST(MeshSoundnessRegressions, DISABLED_WarmStartFromAnEarlierEdgeKeepsTheFirstContact) {
+// WarmStartFromAnotherPoseKeepsTheToi, where the cause is described).
+// Conservative (no miss) but not exact; fixed in lib/src/search.cpp.
+TEST(MeshSoundnessRegressions, WarmStartFromAnEarlierEdgeKeepsTheFirstContact) {
   const examples::ExampleScene scene = testing::configScene("maze_planar");
   const Fixture cold = testing::makeFixture(scene);  // its own warm-start tables
   const Fixture fx = testing::makeFixture(scene);
@@ -293,7 +293,7 @@ TEST(MeshSoundnessRegressions, DISABLED_WarmStartFromAnEarlierEdgeKeepsTheFirstC
   EXPECT_FALSE(testing::fclValidAt(fx, b1.get(), b2.get(), expected.fraction + 1e-6));
   fx.mdd_motion->firstInvalid(a1.get(), a2.get());
   const EdgeContact after = fx.mdd_motion->firstInvalid(b1.get(), b2.get());
-  EXPECT_NEAR(after.fraction, expected.fraction, 1e-9);  // measured: 0.50165499203092101
+  EXPECT_NEAR(after.fraction, expected.fraction, 1e-9);  // was 0.50165499203092101
 }
 
 }  // namespace

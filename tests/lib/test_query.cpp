@@ -2,7 +2,10 @@
 // expected values, plus errors, warm starts and concurrent use.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <string>
 #include <thread>
 
 #include "mddual/brute_force.h"
@@ -292,6 +295,98 @@ TEST(Query, WarmStartGivesTheColdAnswers) {
     }
   }
   EXPECT_GT(contacts, 200);  // the sequence is not all misses
+}
+
+// ---- Warm starts from another pose ------------------------------------------
+
+// Shapes of the warm-start property test: generic hulls, and bodies with
+// vertical edges (prisms, boxes, upright triangles), whose edges stay parallel
+// under rotations about z, as on the planar mesh configs.
+ConvexPolytope randomShape(generators::Rng& rng) {
+  std::uniform_int_distribution<int> kind(0, 3);
+  std::uniform_real_distribution<double> size(0.3, 1.2);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  switch (kind(rng)) {
+    case 0: return ConvexPolytope::fromPoints(generators::blob(12, {size(rng), size(rng), size(rng)}, rng));
+    case 1: return ConvexPolytope::fromPoints(generators::prism(3 + (kind(rng) % 4), size(rng), size(rng)));
+    case 2: return ConvexPolytope::fromPoints(generators::box({size(rng), size(rng), size(rng)}));
+    default: {
+      const double h = size(rng);
+      const Eigen::Vector3d p(unit(rng), unit(rng), 0.0);
+      return ConvexPolytope::fromPoints(generators::triangle(p - Eigen::Vector3d(0, 0, h), p + Eigen::Vector3d(0, 0, h),
+                                                             Eigen::Vector3d(unit(rng), unit(rng), unit(rng))));
+    }
+  }
+}
+
+// A pose near the origin: mostly a rotation about z (vertical edges stay
+// vertical), sometimes any rotation.
+Eigen::Isometry3d randomPose(generators::Rng& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation() = Eigen::Vector3d(2.0 * unit(rng), 2.0 * unit(rng), 0.3 * unit(rng));
+  X.linear() = unit(rng) > -0.5 ? Eigen::AngleAxisd(M_PI * unit(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix()
+                                : generators::randomRotation(rng);
+  return X;
+}
+
+// A direction roughly from B toward A (so that most queries hit), mostly
+// horizontal.
+Eigen::Vector3d randomDirection(const Eigen::Isometry3d& X_WB, generators::Rng& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Eigen::Vector3d s = -X_WB.translation() + 0.8 * Eigen::Vector3d(unit(rng), unit(rng), 0.0);
+  if (unit(rng) > 0.5) s.z() = 0.0;
+  return s.squaredNorm() > 1e-6 ? s : Eigen::Vector3d::UnitX();
+}
+
+bool sameValue(double cold, double hot) {
+  if (std::isnan(cold) || std::isinf(cold)) return std::isnan(cold) ? std::isnan(hot) : cold == hot;
+  return std::abs(cold - hot) <= kTol * std::max(1.0, std::abs(cold));
+}
+
+// A WarmStart left by queries of the same pair at another pose (as a planner
+// leaves it, one per pair) may change the speed only: toi(), mdd() and
+// intersect() at the new pose give the cold answers. Found by the mesh
+// soundness sweep (QueryRegressions.WarmStartFromAnotherPoseKeepsTheToi).
+TEST(Query, WarmStartFromAnotherPoseGivesTheColdAnswers) {
+  generators::Rng rng(20261124);
+  constexpr int kPairs = 3000;
+  int hits = 0;
+  for (int k = 0; k < kPairs; ++k) {
+    const ConvexPolytope a = randomShape(rng);
+    const ConvexPolytope b = randomShape(rng);
+    const Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
+    const Eigen::Isometry3d X_WB1 = randomPose(rng);
+    const Eigen::Isometry3d X_WB2 = randomPose(rng);
+    const DirectionalInput p1{&a, X_WA, &b, X_WB1, randomDirection(X_WB1, rng)};
+    const DirectionalInput p2{&a, X_WA, &b, X_WB2, randomDirection(X_WB2, rng)};
+    // Every query fills its part of the warm start at P1.
+    WarmStart warm_p1;
+    toi(p1, &warm_p1);
+    mdd(p1, &warm_p1);
+    intersect(IntersectInput{&a, X_WA, &b, X_WB1}, &warm_p1);
+    const std::string where = "pair " + std::to_string(k) + ": " + toJsonLine(p2);
+
+    WarmStart warm = warm_p1;
+    const ToiResult t_cold = toi(p2);
+    const ToiResult t_hot = toi(p2, &warm);
+    EXPECT_EQ(t_cold.status, t_hot.status) << where;
+    EXPECT_TRUE(sameValue(t_cold.toi, t_hot.toi)) << where << "\n  cold " << t_cold.toi << " warm " << t_hot.toi;
+    if (t_cold.status == ToiStatus::kHit) ++hits;
+
+    warm = warm_p1;
+    const MddResult m_cold = mdd(p2);
+    const MddResult m_hot = mdd(p2, &warm);
+    EXPECT_EQ(m_cold.status, m_hot.status) << where;
+    EXPECT_TRUE(sameValue(m_cold.distance, m_hot.distance))
+        << where << "\n  cold " << m_cold.distance << " warm " << m_hot.distance;
+
+    warm = warm_p1;
+    const IntersectInput i2{&a, X_WA, &b, X_WB2};
+    EXPECT_EQ(intersect(i2).status, intersect(i2, &warm).status) << where;
+    if (::testing::Test::HasFailure()) break;  // one pair's report is enough
+  }
+  EXPECT_GT(hits, kPairs / 3);  // most pairs reach a contact: the searches ran
 }
 
 TEST(Query, ConcurrentQueriesGiveTheSameAnswers) {

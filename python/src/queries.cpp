@@ -1,6 +1,7 @@
-// One-pair queries: mdd, toi, intersect, penetration_depth, width. The
+// One-pair queries: mdd, toi, intersect, penetration_depth, width, distance. The
 // arguments are converted under the GIL; the query itself runs without it.
 #include "mddual/brute_force.h"
+#include "mddual/distance.h"
 #include "mddual/penetration.h"
 #include "mddual/query.h"
 
@@ -91,6 +92,17 @@ WidthResult widthCall(const ConvexPolytope& a, const py::object& X_WA, const std
   return width(in);
 }
 
+DistanceResult distanceCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b,
+                            const py::object& X_WB) {
+  DistanceInput in;
+  in.a = &a;
+  in.X_WA = poseFrom(X_WA, "X_WA");
+  in.b = &b;
+  in.X_WB = poseFrom(X_WB, "X_WB");
+  py::gil_scoped_release release;
+  return distance(in);
+}
+
 }  // namespace
 
 void bindQueries(py::module_& m) {
@@ -112,6 +124,9 @@ void bindQueries(py::module_& m) {
         "(within a factor 1 + delta) or 'brute'; delta = 0 selects the method's default.");
   m.def("width", &widthCall, py::arg("a"), py::arg("X_WA") = py::none(), py::kw_only(), py::arg("method") = "exact",
         py::arg("delta") = 0.0, "Width of A: the smallest distance between two parallel planes enclosing it.");
+  m.def("distance", &distanceCall, py::arg("a"), py::arg("X_WA"), py::arg("b"), py::arg("X_WB"),
+        "Euclidean separation distance of A and B with a witness point on each (0 when touching, minus the "
+        "exact penetration depth when the interiors overlap).");
 }
 
 }  // namespace mddual::python

@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "mddual/distance.h"
 #include "mddual/query.h"
 
 namespace mddual::python {
@@ -141,6 +142,19 @@ void bindResults(py::module_& m) {
       .def_readonly("delta", &PenetrationResult::delta)
       .def("__repr__", [](const PenetrationResult& r) {
         return std::string("PenetrationResult(status='") + toString(r.status) + "', depth=" + number(r.depth) + ")";
+      });
+
+  py::class_<DistanceResult>(m, "DistanceResult",
+                             "Result of distance(): status ('separated', 'touching', 'penetrating'), distance "
+                             "(signed: minus the penetration depth when penetrating), the witness points point_a "
+                             "and point_b (world frame) and the unit normal from A toward B.")
+      .def_property_readonly("status", [](const DistanceResult& r) { return toString(r.status); })
+      .def_readonly("distance", &DistanceResult::distance)
+      .def_property_readonly("point_a", [](const DistanceResult& r) { return Eigen::Vector3d(r.p_WA); })
+      .def_property_readonly("point_b", [](const DistanceResult& r) { return Eigen::Vector3d(r.p_WB); })
+      .def_property_readonly("normal", [](const DistanceResult& r) { return Eigen::Vector3d(r.normal_W); })
+      .def("__repr__", [](const DistanceResult& r) {
+        return std::string("DistanceResult(status='") + toString(r.status) + "', distance=" + number(r.distance) + ")";
       });
 
   py::class_<WidthResult>(m, "WidthResult",

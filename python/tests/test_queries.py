@@ -1,4 +1,4 @@
-"""mdd, toi, intersect, penetration_depth and width on one pair: closed forms
+"""mdd, toi, intersect, penetration_depth, width and distance on one pair: closed forms
 on unit cubes, agreement with the brute force (A - B built explicitly) on
 seeded random pairs, and the library's errors."""
 
@@ -216,6 +216,46 @@ def test_intersect_and_penetration_equal_the_brute_force(rng):
         assert (exact.status == "penetrating") == fast.intersecting
         statuses.add(fast.status)
     assert statuses == {"separated", "penetrating"}
+
+
+# ---- separation distance ---------------------------------------------------------
+
+def test_distance_of_separated_and_overlapping_cubes(unit_cube):
+    r = mddual.distance(unit_cube, None, unit_cube, translation(3.0))
+    assert r.status == "separated"
+    assert r.distance == pytest.approx(2.0, abs=TOL)
+    assert r.point_a[0] == pytest.approx(0.5, abs=TOL)
+    assert r.point_b[0] == pytest.approx(2.5, abs=TOL)
+    np.testing.assert_allclose(r.normal, [1, 0, 0], atol=TOL)
+    r = mddual.distance(unit_cube, None, unit_cube, translation(0.25, 0.1))
+    assert r.status == "penetrating"
+    assert r.distance == pytest.approx(-0.75, abs=TOL)
+    assert mddual.distance(unit_cube, None, unit_cube, translation(1.0)).status == "touching"
+
+
+def test_distance_agrees_with_the_brute_force_toi_and_penetration(rng):
+    """Separated: B moved by the distance along -normal touches A (brute-force
+    toi) and the witness points are that far apart; overlapping: minus the
+    brute-force penetration depth."""
+    statuses = set()
+    for a, X_WA, b, X_WB, _ in random_pairs(rng, 100):
+        r = mddual.distance(a, X_WA, b, X_WB)
+        statuses.add(r.status)
+        if r.status == "separated":
+            assert close(float(np.linalg.norm(r.point_b - r.point_a)), r.distance), r
+            hit = mddual.toi(a, X_WA, b, X_WB, -r.normal, method="brute")
+            assert hit.status == "hit" and close(hit.toi, r.distance), (r, hit)
+        elif r.status == "penetrating":
+            ref = mddual.penetration_depth(a, X_WA, b, X_WB, method="brute")
+            assert close(r.distance, -ref.depth), (r, ref)
+    assert {"separated", "penetrating"} <= statuses
+
+
+def test_distance_of_a_nan_pose_raises(unit_cube):
+    X = translation(3.0)
+    X[1, 3] = np.nan
+    with pytest.raises(mddual.InvalidInputError, match="X_WB"):
+        mddual.distance(unit_cube, None, unit_cube, X)
 
 
 # ---- errors --------------------------------------------------------------------

@@ -123,8 +123,9 @@ bool rodFree(const ob::State* s) {
   return true;
 }
 
-TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
-  ompl::RNG::setSeed(11);
+/// SE(2) on [0,10]^2 with the rod checker; start (1, 1) heading 0 (the rod
+/// along x), goal at (x, y) with heading `yaw`.
+og::SimpleSetup makeRodSetup(double x, double y, double yaw) {
   auto space = std::make_shared<ob::SE2StateSpace>();
   ob::RealVectorBounds bounds(2);
   bounds.setLow(0.0);
@@ -132,13 +133,20 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
   space->setBounds(bounds);
   og::SimpleSetup ss(space);
   ss.setStateValidityChecker(rodFree);
-  ss.getSpaceInformation()->setStateValidityCheckingResolution(0.0005);
   ob::ScopedState<ob::SE2StateSpace> start(space), goal(space);
   start->setXY(1.0, 1.0);
-  start->setYaw(0.0);  // the rod along x: it must turn to pass the 1 m gap
-  goal->setXY(9.0, 1.0);
-  goal->setYaw(0.0);
+  start->setYaw(0.0);
+  goal->setXY(x, y);
+  goal->setYaw(yaw);
   ss.setStartAndGoalStates(start, goal);
+  return ss;
+}
+
+TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
+  ompl::RNG::setSeed(11);
+  og::SimpleSetup ss = makeRodSetup(9.0, 1.0, 0.0);  // the rod must turn to pass the 1 m gap
+  ss.getSpaceInformation()->setStateValidityCheckingResolution(0.0005);
+  const ob::StateSpacePtr& space = ss.getStateSpace();
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   ASSERT_TRUE(planner->getRotateFirst());
   ss.setPlanner(planner);
@@ -168,19 +176,7 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
 
 TEST(ExactRRTConnect, RotateFirstOffKeepsStraightEdges) {
   ompl::RNG::setSeed(11);
-  auto space = std::make_shared<ob::SE2StateSpace>();
-  ob::RealVectorBounds bounds(2);
-  bounds.setLow(0.0);
-  bounds.setHigh(10.0);
-  space->setBounds(bounds);
-  og::SimpleSetup ss(space);
-  ss.setStateValidityChecker(rodFree);
-  ob::ScopedState<ob::SE2StateSpace> start(space), goal(space);
-  start->setXY(1.0, 1.0);
-  start->setYaw(0.0);
-  goal->setXY(2.0, 3.0);
-  goal->setYaw(1.0);
-  ss.setStartAndGoalStates(start, goal);
+  og::SimpleSetup ss = makeRodSetup(2.0, 3.0, 1.0);
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   planner->params().setParam("rotate_first", "0");
   EXPECT_FALSE(planner->getRotateFirst());

@@ -15,7 +15,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr std::size_t kMaxWarmPairs = std::size_t{1} << 17;
 /// Sub-edge count safety factor (see the header: OMPL's slerp round-off).
 constexpr double kSubEdgeSafety = 1e-6;
-/// An enlarged piece (enlargePieces at delta) lies within this many delta of
+/// An enlarged piece (enlargePiece at delta) lies within this many delta of
 /// the piece: the cube's circumradius sqrt(3) (the icosahedron's is 1.26),
 /// with room for the 1e-9 scale margin and round-off. The robot's node
 /// volumes grown by it hold the enlarged pieces.
@@ -77,13 +77,6 @@ scene::Piece enlargePiece(const scene::Piece& piece, double delta) {
   const bool use_cube = cube.numVertices() < ico.numVertices();
   return scene::Piece::make(use_cube ? std::move(cube) : std::move(ico), scene::PieceKind::kConvex,
                             piece.origin + " (enlarged by " + std::to_string(delta) + ")");
-}
-
-std::vector<scene::Piece> enlargePieces(const std::vector<scene::Piece>& pieces, double delta) {
-  std::vector<scene::Piece> out;
-  out.reserve(pieces.size());
-  for (const scene::Piece& piece : pieces) out.push_back(enlargePiece(piece, delta));
-  return out;
 }
 
 MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_ptr<const scene::World> world,

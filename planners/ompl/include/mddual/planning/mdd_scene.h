@@ -50,7 +50,7 @@
 //      matter of speed, not soundness: mdd_scene_rotation.cpp). A pair of
 //      leaves (robot piece i, world piece j) with e <= delta is checked with
 //      the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
-//      <= refinement_levels with delta_k >= e (enlargePieces: it holds every
+//      <= refinement_levels with delta_k >= e (enlargePiece: it holds every
 //      point within delta_k of the piece, hence piece i over all of I), at
 //      orientation R(tm), swept from p(ta) along v against piece j with toi
 //      (intersect when v = 0). No contact: the pair is free on I. A contact
@@ -324,7 +324,5 @@ class MddScene {
 /// Minkowski sum with an icosahedron or a cube of inradius delta (the one
 /// whose hull has fewer vertices), as a kConvex piece.
 scene::Piece enlargePiece(const scene::Piece& piece, double delta);
-/// enlargePiece on every piece.
-std::vector<scene::Piece> enlargePieces(const std::vector<scene::Piece>& pieces, double delta);
 
 }  // namespace mddual::planning

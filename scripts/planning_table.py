@@ -6,7 +6,8 @@ by default): per scene, the state-check line and the edge table. Writes one row 
 scene and edge kind (state checks, MDD and OMPL's discrete + FCL time per edge and
 their ratio, the ratio on valid and on invalid edges alone, FCL's continuous
 validator with conservative advancement and how often its answer differs from
-MDD's, and MDD's pair queries per edge) between the markers
+MDD's, and MDD's pair queries per edge), then the lastValid table (the same edges
+checked with lastValid: times and the mean fraction kept of the invalid edges) between the markers
 `<!-- planning:begin -->` and `<!-- planning:end -->` of README.md (--readme), or
 to standard output.
 
@@ -38,13 +39,14 @@ def parse(text):
         state = re.search(r"MDD ([\d.]+) us .*?FCL ([\d.]+) us .*?FCL / MDD = ([\d.]+)x", block)
         if not state:
             raise SystemExit("planning_table: scene '%s' has no state-check line" % name)
-        rows = []
+        rows, last_valid = [], []
         for line in block.splitlines():
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
-            if len(cells) != 13 or not re.match(r"(translation|rotating),", cells[0]):
-                continue
-            rows.append(cells)
-        scenes.append((name, state.groups(), rows))
+            if len(cells) == 13 and re.match(r"(translation|rotating),", cells[0]):
+                rows.append(cells)
+            elif len(cells) == 6 and cells[0].startswith("lastValid: "):
+                last_valid.append(cells)
+        scenes.append((name, state.groups(), rows, last_valid))
     return header.groups(), scenes
 
 
@@ -56,11 +58,20 @@ def table(parsed, command):
            "| scene | state check MDD / FCL (us) | FCL / MDD | edges | MDD (us) | OMPL discrete + FCL (us) | "
            "discrete / MDD: all | valid only / invalid only | FCL CCD CA (us) | CA answers != MDD | pair queries |",
            "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for name, (t_mdd, t_fcl, ratio), rows in scenes:
+    for name, (t_mdd, t_fcl, ratio), rows, _ in scenes:
         for r in rows:
             differs = "-" if r[12] == "-" else "%s of %s" % (r[12], edges)
             out.append("| %s | %s / %s | %sx | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 name, t_mdd, t_fcl, ratio, r[0], r[2], r[5], r[7], r[8], r[11], differs, r[3]))
+    if any(last_valid for _, _, _, last_valid in scenes):
+        out += ["", "The same edges with `checkMotion(s1, s2, lastValid)` (what KPIECE calls: the part of an invalid "
+                "edge before its first contact), and the mean fraction each keeps of the invalid edges:", "",
+                "| scene | edges | MDD (us) | OMPL discrete + FCL (us) | discrete / MDD | kept MDD / discrete |",
+                "|---|---|---|---|---|---|"]
+        for name, _, _, last_valid in scenes:
+            for r in last_valid:
+                out.append("| %s | %s | %s | %s | %s | %s |" % (
+                    name, r[0][len("lastValid: "):], r[1], r[3], r[4], r[5]))
     return "\n".join(out) + "\n"
 
 

@@ -1,5 +1,6 @@
 #include "mddual/planning/mdd_checkers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -84,7 +85,8 @@ void MddMotionValidator::countOmpl(bool valid) const {
   }
 }
 
-EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s2, bool first_contact) const {
+EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s2, EdgeQuery query) const {
+  const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
   if (!si_->satisfiesBounds(s1)) {
     out.collides = true;
@@ -124,7 +126,10 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
       return out;
     }
   }
-  out = scene_->checkEdge(motion, first_contact);
+  // lastValid: a bound as fine as OMPL's discrete check's (one of its steps).
+  const double tolerance =
+      query == EdgeQuery::kLastValid ? 1.0 / std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2)) : 0.0;
+  out = scene_->checkEdge(motion, query, tolerance);
   counters_.addPairQueries(static_cast<std::uint64_t>(out.pair_queries));
   counters_.addSubEdges(static_cast<std::uint64_t>(out.sub_edges));
   if (bounds_exit < out.fraction) {
@@ -137,14 +142,16 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
   return out;
 }
 
-EdgeContact MddMotionValidator::firstInvalid(const ob::State* s1, const ob::State* s2) const {
-  return evaluate(s1, s2, true);
+EdgeContact MddMotionValidator::firstInvalid(const ob::State* s1, const ob::State* s2, EdgeQuery query) const {
+  if (query == EdgeQuery::kValidity)
+    throw InvalidInputError("MddMotionValidator::firstInvalid: a contact query, not kValidity");
+  return evaluate(s1, s2, query);
 }
 
 bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
   CheckerCounters::Timer timer(counters_);
   counters_.addMotionCheck();
-  const bool valid = !evaluate(s1, s2, false).collides;
+  const bool valid = !evaluate(s1, s2, EdgeQuery::kValidity).collides;
   countOmpl(valid);
   return valid;
 }
@@ -153,7 +160,7 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                      std::pair<ob::State*, double>& lastValid) const {
   CheckerCounters::Timer timer(counters_);
   counters_.addMotionCheck();
-  const EdgeContact e = evaluate(s1, s2, true);
+  const EdgeContact e = evaluate(s1, s2, EdgeQuery::kLastValid);
   if (!e.collides) {
     countOmpl(true);
     return true;

@@ -348,7 +348,21 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   return result;
 }
 
-EdgeContact MddScene::checkEdge(const EdgeMotion& motion, bool first_contact) const {
+const char* toString(EdgeQuery query) {
+  switch (query) {
+    case EdgeQuery::kValidity: return "validity";
+    case EdgeQuery::kFirstContact: return "first contact";
+    case EdgeQuery::kLastValid: return "last valid";
+  }
+  return "?";
+}
+
+EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance) const {
+  if (!(fraction_tolerance >= 0.0 && fraction_tolerance <= 1.0)) {
+    throw InvalidInputError("MddScene::checkEdge: fraction_tolerance must be in [0, 1] (got " +
+                            std::to_string(fraction_tolerance) + ")");
+  }
+  const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
   if (!motion.rotates()) {
     const Eigen::Isometry3d X = motion.pose(0.0);
@@ -372,7 +386,31 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, bool first_contact) co
     return out;
   }
   out.exact = false;
-  checkRotating(motion, first_contact, &out);
+  if (query == EdgeQuery::kLastValid) {
+    // 1. The verdict: the end and middle states (a collision there settles
+    //    it), else the validity search.
+    bool collides = collidesSet(0, motion.X_end, &out.pair_queries, nullptr) ||
+                    collidesSet(0, motion.pose(0.5), &out.pair_queries, nullptr);
+    if (!collides) {
+      checkRotating(motion, EdgeQuery::kValidity, 0.0, &out);
+      collides = out.collides;
+    }
+    if (!collides) return out;
+    // 2. The first-contact bound at any enlargement level; when only the
+    //    finest level touched (a contact within the finest enlargement that
+    //    the coarser triples' volumes cleared), the finest search.
+    EdgeContact bound;
+    checkRotating(motion, EdgeQuery::kLastValid, fraction_tolerance, &bound);
+    if (!bound.collides) checkRotating(motion, EdgeQuery::kFirstContact, 0.0, &bound);
+    bound.pair_queries += out.pair_queries;
+    bound.sub_edges += out.sub_edges;
+    out = bound;
+    out.exact = false;
+    out.collides = true;
+    if (!(out.fraction < kInf)) out.fraction = 0.0;  // not seen; the start is a safe bound
+  } else {
+    checkRotating(motion, query, 0.0, &out);
+  }
   if (out.collides && out.fraction == 0.0) {
     out.start_collides = collidesSet(0, motion.pose(0.0), &out.pair_queries, nullptr);
   }

@@ -41,6 +41,7 @@ struct Triple {
   int robot;     ///< robot node
   int world;     ///< world node, with its tree: 2 * node + tree (0: static, 1: overflow)
   int interval;
+  int seq;  ///< push order: among equal bounds the latest first (a dive to the leaves)
 };
 
 struct Scratch {
@@ -49,12 +50,19 @@ struct Scratch {
 };
 
 bool later(const Triple& a, const Triple& b) {
-  return a.bound > b.bound;
+  return a.bound > b.bound || (a.bound == b.bound && a.seq < b.seq);
 }
 
 }  // namespace
 
-void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeContact* out) const {
+void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance,
+                             EdgeContact* out) const {
+  const bool first_contact = query != EdgeQuery::kValidity;
+  // kLastValid: a leaf contact at any enlargement level is a lower bound of
+  // its pair's first contact (the enlarged sweep holds the true motion), so
+  // it may end the search like a finest-level one (the edge is known to
+  // collide: the verdict does not rest on it).
+  const bool any_level = query == EdgeQuery::kLastValid;
   if (world_tree_.empty() && overflow_tree_.empty()) return;
   const std::vector<scene::Piece>& world = world_->pieces();
   // World nodes of both trees, encoded as in Triple::world.
@@ -112,12 +120,13 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     return I.ta + (I.tb - I.ta) * (lo / I.length);
   };
   double best = kInf;  // smallest finest-level contact fraction found
+  long pushed = 0;
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
     if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
     const double b = bound(rn, wn, intervals[static_cast<std::size_t>(iv)]);
     if (b < best) {
-      heap.push_back(Triple{b, rn, wn, iv});
+      heap.push_back(Triple{b, rn, wn, iv, static_cast<int>(++pushed)});
       if (first_contact) std::push_heap(heap.begin(), heap.end(), later);
     }
   };
@@ -156,7 +165,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
       in.X_WB = I.X_WM;
       in.s_W = I.u_W;
       in.max_distance = I.length;
-      in.exact_toi = first_contact && out_leaf.finest;  // coarse levels only decide whether to refine
+      in.exact_toi = first_contact && (out_leaf.finest || any_level);  // otherwise: whether to refine
       const ToiResult r = toi(in, warm);
       if (r.status == ToiStatus::kNever || !(r.toi <= I.length)) return out_leaf;
       if (r.status == ToiStatus::kHit) {
@@ -220,6 +229,12 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
   // First contact: a queue by bound (see the header). Validity only: any
   // order is sound; a stack (depth first) is cheaper and reaches leaves soon.
   while (!heap.empty()) {
+    if (any_level && heap.front().bound >= best - fraction_tolerance) {
+      // Every contact left in the queue is no earlier than the queue's
+      // smallest bound, within the tolerance of the best one found.
+      best = std::min(best, heap.front().bound);
+      break;
+    }
     if (first_contact) std::pop_heap(heap.begin(), heap.end(), later);
     const Triple t = heap.back();
     heap.pop_back();
@@ -264,7 +279,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, bool first_contact, EdgeC
     if (j < 0) continue;  // the piece is not in the world
     const LeafResult r = leafQuery(i, j, I, e);
     if (!r.hit) continue;
-    if (r.finest) {
+    if (r.finest || any_level) {
       out->collides = true;
       if (r.fraction < best) {
         best = r.fraction;

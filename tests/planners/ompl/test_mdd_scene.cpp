@@ -132,6 +132,22 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PairLoop, ::testing::Range(0, testing::kSceneCo
 
 // ---- Rotating edges -----------------------------------------------------------------
 
+/// A rotating edge from a free random pose: up to 4 m of translation, a
+/// rotation by up to pi about a random axis.
+EdgeMotion randomRotatingEdge(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
+  EdgeMotion m;
+  Eigen::Isometry3d X = randomPose(scene, rng);
+  while (mdd.collides(X)) X = randomPose(scene, rng);
+  m.p_start = X.translation();
+  m.q_start = Eigen::Quaterniond(X.linear());
+  m.R_start = X.linear();
+  m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, 4.0)(rng) * generators::randomUnitVector(rng);
+  m.axis_R = generators::randomUnitVector(rng);
+  m.angle = std::uniform_real_distribution<double>(0.0, kPi)(rng);
+  m.X_end = m.pose(1.0);
+  return m;
+}
+
 TEST(MddSceneRotation, ValidityOnlyAndFirstContactAgreeAndTheFractionIsALowerBound) {
   // On the trap (thin walls of triangles, a long robot): both modes of
   // checkEdge give the same verdict, and a colliding edge's fraction is no
@@ -142,16 +158,7 @@ TEST(MddSceneRotation, ValidityOnlyAndFirstContactAgreeAndTheFractionIsALowerBou
   testing::Rng rng(testing::seed() * 101);
   int edges = 0, colliding = 0;
   while (edges < 200 * testing::scale()) {
-    EdgeMotion m;
-    Eigen::Isometry3d X = randomPose(scene, rng);
-    if (mdd.collides(X)) continue;
-    m.p_start = X.translation();
-    m.q_start = Eigen::Quaterniond(X.linear());
-    m.R_start = X.linear();
-    m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, 4.0)(rng) * generators::randomUnitVector(rng);
-    m.axis_R = generators::randomUnitVector(rng);
-    m.angle = std::uniform_real_distribution<double>(0.0, kPi)(rng);
-    m.X_end = m.pose(1.0);
+    const EdgeMotion m = randomRotatingEdge(scene, mdd, rng);
     ++edges;
     const EdgeContact first = mdd.checkEdge(m, true);
     const EdgeContact any = mdd.checkEdge(m, false);
@@ -176,6 +183,53 @@ TEST(MddSceneRotation, ValidityOnlyAndFirstContactAgreeAndTheFractionIsALowerBou
   }
   EXPECT_GT(colliding, edges / 10);
   EXPECT_LT(colliding, edges - edges / 10);
+}
+
+TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWithinItsTolerance) {
+  // EdgeQuery::kLastValid on the trap: the verdict of kValidity; a colliding
+  // edge's fraction is no later than the first colliding state found by
+  // sampling; with a tolerance the bound is at most that much earlier than
+  // with none (the search stops within it of the best contact found, and the
+  // full search's answer is no later than that contact).
+  const examples::ExampleScene& scene = testing::allScenes()[8];
+  ASSERT_EQ(scene.name, "trap");
+  const MddScene mdd(scene.robot, scene.world);
+  testing::Rng rng(testing::seed() * 103);
+  constexpr double kTolerance = 0.05;
+  int edges = 0, colliding = 0, looser = 0;
+  while (edges < 200 * testing::scale()) {
+    const EdgeMotion m = randomRotatingEdge(scene, mdd, rng);
+    ++edges;
+    const EdgeContact any = mdd.checkEdge(m, EdgeQuery::kValidity);
+    const EdgeContact full = mdd.checkEdge(m, EdgeQuery::kLastValid);
+    const EdgeContact cut = mdd.checkEdge(m, EdgeQuery::kLastValid, kTolerance);
+    ASSERT_EQ(full.collides, any.collides) << "edge " << edges;
+    ASSERT_EQ(cut.collides, any.collides) << "edge " << edges;
+    EXPECT_FALSE(full.exact);
+    if (!any.collides) continue;
+    ++colliding;
+    ASSERT_GE(cut.fraction, 0.0);
+    ASSERT_LE(full.fraction, 1.0);
+    EXPECT_GE(cut.fraction, full.fraction - kTolerance - 1e-9) << "edge " << edges;
+    looser += cut.fraction < full.fraction - 1e-9;
+    for (int k = 0; k <= 1000; ++k) {
+      const double t = k / 1000.0;
+      if (!mdd.collides(m.pose(t))) continue;
+      EXPECT_LE(full.fraction, t) << "edge " << edges;
+      EXPECT_LE(cut.fraction, t) << "edge " << edges;
+      break;
+    }
+  }
+  EXPECT_GT(colliding, edges / 10);
+  std::printf("kLastValid: %d of %d colliding edges have a looser bound with tolerance %g\n", looser, colliding,
+              kTolerance);
+  // Out-of-range tolerances are refused.
+  EdgeMotion m;
+  m.axis_R = Eigen::Vector3d::UnitZ();
+  m.angle = 1.0;
+  m.X_end = m.pose(1.0);
+  EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, -0.1), InvalidInputError);
+  EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, std::nan("")), InvalidInputError);
 }
 
 TEST(MddSceneRotation, TheTreesCoverTheirPieces) {

@@ -435,27 +435,36 @@ void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, Edge
     }
     return;
   }
-  // Invalid: lastValid is a valid state before the first invalid fraction.
+  // Invalid: lastValid is a valid state before the first invalid fraction
+  // (lastValid's own bound: EdgeQuery::kLastValid, equal to kFirstContact's
+  // on translation edges, possibly earlier on rotating ones).
   const EdgeContact first = mv.firstInvalid(s1, s2);
+  const EdgeContact bound = mv.firstInvalid(s1, s2, EdgeQuery::kLastValid);
   ASSERT_TRUE(first.collides);
+  ASSERT_TRUE(bound.collides);
+  if (!motion.rotates()) {
+    EXPECT_EQ(bound.fraction, first.fraction) << edgeString(fx, s1, s2);
+  }
   EXPECT_GE(lv.second, 0.0) << edgeString(fx, s1, s2);
-  EXPECT_LE(lv.second, first.fraction) << edgeString(fx, s1, s2);
+  EXPECT_LE(lv.second, bound.fraction) << edgeString(fx, s1, s2);
   EXPECT_TRUE(fx.si->isValid(last.get())) << "lastValid is not valid" << edgeString(fx, s1, s2);
-  if (lv.second < first.fraction) {
-    EXPECT_LE(first.fraction - lv.second, 1e-3)
-        << "lastValid backed off far (" << lv.second << " vs " << first.fraction << ")" << edgeString(fx, s1, s2);
+  if (lv.second < bound.fraction) {
+    EXPECT_LE(bound.fraction - lv.second, 1e-3)
+        << "lastValid backed off far (" << lv.second << " vs " << bound.fraction << ")" << edgeString(fx, s1, s2);
   }
   if (first.start_collides) return;
-  // No FCL-invalid state before our first invalid fraction (exact or a bound).
+  // No FCL-invalid state before either bound of the first invalid fraction
+  // (exact or a bound).
   const double t_fcl = denseFirstInvalid(fx, s1, s2, 0.0, kDenseEdgeStep, &tally->samples);
-  if (t_fcl < first.fraction - 1e-9) {
+  if (t_fcl < std::max(first.fraction, bound.fraction) - 1e-9) {
     ob::ScopedState<> st(fx.space->stateSpace());
     fx.space->stateSpace()->interpolate(s1, s2, t_fcl, st.get());
     const Eigen::Isometry3d X = fx.space->pose(st.get());
     if (distanceToTouching(*fx.mdd, X, 1e-6) > touchTolerance(*fx.mdd, X)) {
       ++tally->early;
       ADD_FAILURE() << fx.scene.name << ": FCL collides at t = " << t_fcl << " before our first contact "
-                    << first.fraction << " (rotates " << motion.rotates() << ")" << edgeString(fx, s1, s2);
+                    << first.fraction << " or lastValid's bound " << bound.fraction << " (rotates " << motion.rotates()
+                    << ")" << edgeString(fx, s1, s2);
     }
     return;
   }

@@ -107,10 +107,12 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
-  /// The first invalid fraction of an edge (bounds included) and its contact;
-  /// what checkMotion(s1, s2, lastValid) backs off from. fraction = +inf for a
-  /// valid edge.
-  EdgeContact firstInvalid(const ompl::base::State* s1, const ompl::base::State* s2) const;
+  /// The first invalid fraction of an edge (bounds included) and its contact
+  /// (MddScene::checkEdge's EdgeQuery::kFirstContact). fraction = +inf for a
+  /// valid edge. With query = kLastValid: the looser bound that
+  /// checkMotion(s1, s2, lastValid) backs off from.
+  EdgeContact firstInvalid(const ompl::base::State* s1, const ompl::base::State* s2,
+                           EdgeQuery query = EdgeQuery::kFirstContact) const;
 
   CheckerCounts counts() const { return counters_.read(); }
   void resetCounts() { counters_.reset(); }
@@ -120,7 +122,7 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   const PlanningSpace& planningSpace() const { return *space_; }
 
  private:
-  EdgeContact evaluate(const ompl::base::State* s1, const ompl::base::State* s2, bool first_contact) const;
+  EdgeContact evaluate(const ompl::base::State* s1, const ompl::base::State* s2, EdgeQuery query) const;
   void countOmpl(bool valid) const;
 
   PlanningSpacePtr space_;

@@ -181,14 +181,33 @@ struct SweepResult {
   int pair_queries = 0;  ///< core queries (toi/intersect) run
 };
 
+/// What MddScene::checkEdge() computes.
+enum class EdgeQuery : std::uint8_t {
+  /// Whether the edge collides; EdgeContact::fraction is only the contact the
+  /// search stopped at.
+  kValidity,
+  /// Whether it collides and its first contact: exact on translation edges;
+  /// on rotating edges a lower bound from the finest enlargement (delta /
+  /// 2^refinement_levels).
+  kFirstContact,
+  /// `collides` as kValidity decides it (computed first, so a free edge costs
+  /// what kValidity costs), and for a colliding edge a lower bound of its
+  /// first contact: exact on translation edges; on rotating edges the earliest
+  /// contact of the enlarged pieces at the level each (robot piece, world
+  /// piece, interval) reached, not refined to the finest level (an earlier,
+  /// cheaper bound than kFirstContact's). What OMPL's lastValid needs.
+  kLastValid,
+};
+const char* toString(EdgeQuery query);
+
 /// Result of MddScene::checkEdge(): the first contact on an edge.
 struct EdgeContact {
   bool collides = false;        ///< some state of the edge (closed, both ends included) collides
   bool start_collides = false;  ///< the edge's start state collides (fraction 0)
   /// Fraction in [0, 1] of the first contact: every state before it is free.
   /// Exact for translation edges; for rotating edges a lower bound (the scheme
-  /// above). +infinity when the edge is free. With first_contact = false, only
-  /// `collides` is meaningful.
+  /// above; with EdgeQuery::kLastValid a looser one). +infinity when the
+  /// edge is free. With EdgeQuery::kValidity only `collides` is meaningful.
   double fraction = std::numeric_limits<double>::infinity();
   bool exact = true;     ///< fraction is exact (translation edge), not a bound
   PieceContact contact;  ///< for rotating edges: the contact of the enlarged robot piece
@@ -259,7 +278,16 @@ class MddScene {
   /// a sweep, and a coarse sub-edge that fails is first tested at its middle
   /// and end states with the true pieces (a collision there settles the edge
   /// without refinement). Both modes agree on `collides`.
-  EdgeContact checkEdge(const EdgeMotion& motion, bool first_contact = true) const;
+  /// fraction_tolerance (kLastValid only, in [0, 1]): on rotating edges the
+  /// search for the bound stops once it is within this much (a fraction of
+  /// the edge) of the best contact found so far, so the bound may be up to
+  /// that much earlier than the full search's. The motion validator passes
+  /// one step of OMPL's discrete check of the edge (its lastValid is no finer).
+  EdgeContact checkEdge(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance = 0.0) const;
+  /// checkEdge(motion, kFirstContact) or (first_contact = false) kValidity.
+  EdgeContact checkEdge(const EdgeMotion& motion, bool first_contact = true) const {
+    return checkEdge(motion, first_contact ? EdgeQuery::kFirstContact : EdgeQuery::kValidity);
+  }
 
   // ---- Building blocks on a chosen piece set (0: the robot's pieces; k >= 1:
   // the pieces enlarged at level k - 1); for the clearance queries and tests.
@@ -286,8 +314,11 @@ class MddScene {
     std::unique_ptr<std::once_flag[]> once;
     std::unique_ptr<std::optional<scene::Piece>[]> pieces;
   };
-  /// Rotating edges (see the file comment); mdd_scene_rotation.cpp.
-  void checkRotating(const EdgeMotion& motion, bool first_contact, EdgeContact* out) const;
+  /// Rotating edges (see the file comment); mdd_scene_rotation.cpp. With
+  /// kLastValid, only the contact bound of checkEdge's kLastValid (its verdict
+  /// is computed before): out->collides is false when no enlarged piece at
+  /// the level its triple reached touches.
+  void checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance, EdgeContact* out) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
   double setMargin(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;

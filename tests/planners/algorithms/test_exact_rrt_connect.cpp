@@ -148,6 +148,7 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
   ss.getSpaceInformation()->setStateValidityCheckingResolution(0.0005);
   const ob::StateSpacePtr& space = ss.getStateSpace();
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  planner->params().setParam("rotate_first", "1");
   ASSERT_TRUE(planner->getRotateFirst());
   ss.setPlanner(planner);
   ASSERT_EQ(ss.solve(10.0), ob::PlannerStatus::EXACT_SOLUTION);
@@ -174,11 +175,10 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
   EXPECT_GT(translations, 0);
 }
 
-TEST(ExactRRTConnect, RotateFirstOffKeepsStraightEdges) {
+TEST(ExactRRTConnect, RotateFirstOffByDefaultKeepsStraightEdges) {
   ompl::RNG::setSeed(11);
   og::SimpleSetup ss = makeRodSetup(2.0, 3.0, 1.0);
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
-  planner->params().setParam("rotate_first", "0");
   EXPECT_FALSE(planner->getRotateFirst());
   ss.setPlanner(planner);
   ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);

@@ -80,6 +80,16 @@
 //    at once, depth first, and the search stops at the first finest-level
 //    contact or when the true pieces of a refuted pair intersect at the
 //    refuted sweep's contact time (a state of the edge that collides).
+//    lastValid (EdgeQuery::kLastValid): the verdict as in validity only (a
+//    colliding end or middle state settles it first); on a colliding edge,
+//    the first-contact queue with a leaf contact at ANY level taken as a
+//    bound (piece i enlarged at level k holds the true piece over its
+//    interval, so its sweep's contact fraction is no later than the pair's
+//    true first contact), stopped once the queue's smallest bound b is within
+//    the tolerance of the best contact f found; it returns min(f, b). By the
+//    argument for f above that is no later than t*, and it is at most the
+//    tolerance below what the search run to the end would return (which is
+//    no later than f).
 //
 // Worlds that change (addWorldPiece, removeWorldPiece, moveWorldPiece): the
 // world side of every traversal above is a forest of two hierarchies, a

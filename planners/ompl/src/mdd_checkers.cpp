@@ -95,27 +95,6 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
     return out;
   }
   const EdgeMotion motion = space_->motion(s1, s2);
-  if (!first_contact && si_->satisfiesBounds(s2)) {
-    // As OMPL's validators do: the end state first. Invalid edges often end in
-    // collision, and a state test (intersect, early exit) is cheaper than
-    // sweeping every candidate pair.
-    int queries = 0;
-    const bool end_collides = scene_->collides(motion.X_end, &queries);
-    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
-    if (end_collides) {
-      out.collides = true;
-      out.fraction = 1.0;  // some state collides; the first contact is not computed here
-      return out;
-    }
-    queries = 0;
-    const bool middle_collides = scene_->collides(motion.pose(0.5), &queries);
-    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
-    if (middle_collides) {
-      out.collides = true;
-      out.fraction = 0.5;
-      return out;
-    }
-  }
   double bounds_exit = kInf;
   if (!si_->satisfiesBounds(s2)) {
     bounds_exit = space_->boundsExitFraction(s1, s2);
@@ -143,8 +122,11 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
 }
 
 EdgeContact MddMotionValidator::firstInvalid(const ob::State* s1, const ob::State* s2, EdgeQuery query) const {
-  if (query == EdgeQuery::kValidity)
-    throw InvalidInputError("MddMotionValidator::firstInvalid: a contact query, not kValidity");
+  if (query == EdgeQuery::kValidity) {
+    throw InvalidInputError(
+        "MddMotionValidator::firstInvalid: query kValidity computes no first contact (use "
+        "kFirstContact or kLastValid)");
+  }
   return evaluate(s1, s2, query);
 }
 

@@ -348,13 +348,17 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   return result;
 }
 
-const char* toString(EdgeQuery query) {
-  switch (query) {
-    case EdgeQuery::kValidity: return "validity";
-    case EdgeQuery::kFirstContact: return "first contact";
-    case EdgeQuery::kLastValid: return "last valid";
+bool MddScene::endOrMiddleCollides(const EdgeMotion& motion, EdgeContact* out) const {
+  PieceContact which;
+  for (const double t : {1.0, 0.5}) {
+    if (collidesSet(0, t == 1.0 ? motion.X_end : motion.pose(t), &out->pair_queries, &which)) {
+      out->collides = true;
+      out->fraction = t;  // a state that collides, not the first contact
+      out->contact = which;
+      return true;
+    }
   }
-  return "?";
+  return false;
 }
 
 EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance) const {
@@ -364,6 +368,10 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
   }
   const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
+  // Validity: the end and middle states first. Invalid edges often end in
+  // collision, and a state test (intersect, early exit) is cheaper than
+  // sweeping every candidate pair.
+  if (query == EdgeQuery::kValidity && endOrMiddleCollides(motion, &out)) return out;
   if (!motion.rotates()) {
     const Eigen::Isometry3d X = motion.pose(0.0);
     const Eigen::Vector3d v = motion.p_end - motion.p_start;
@@ -389,16 +397,16 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
   if (query == EdgeQuery::kLastValid) {
     // 1. The verdict: the end and middle states (a collision there settles
     //    it), else the validity search.
-    bool collides = collidesSet(0, motion.X_end, &out.pair_queries, nullptr) ||
-                    collidesSet(0, motion.pose(0.5), &out.pair_queries, nullptr);
+    bool collides = endOrMiddleCollides(motion, &out);
     if (!collides) {
       checkRotating(motion, EdgeQuery::kValidity, 0.0, &out);
       collides = out.collides;
     }
     if (!collides) return out;
-    // 2. The first-contact bound at any enlargement level; when only the
-    //    finest level touched (a contact within the finest enlargement that
-    //    the coarser triples' volumes cleared), the finest search.
+    // 2. The first-contact bound at any enlargement level; when no enlarged
+    //    piece touched (the verdict was a contact within the finest
+    //    enlargement on triples that the any-level search cleared: a rare
+    //    false alarm, and a second full search), the finest search.
     EdgeContact bound;
     checkRotating(motion, EdgeQuery::kLastValid, fraction_tolerance, &bound);
     if (!bound.collides) checkRotating(motion, EdgeQuery::kFirstContact, 0.0, &bound);

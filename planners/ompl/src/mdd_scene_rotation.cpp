@@ -119,14 +119,14 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if (!obbCastInterval(M.obb, box_W, I.u_W, I.length, slack, &lo, &hi)) return kInf;
     return I.ta + (I.tb - I.ta) * (lo / I.length);
   };
-  double best = kInf;  // smallest finest-level contact fraction found
-  long pushed = 0;
+  double best = kInf;  // smallest finest-level contact fraction found (kLastValid: any level)
+  int pushed = 0;
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
     if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
     const double b = bound(rn, wn, intervals[static_cast<std::size_t>(iv)]);
     if (b < best) {
-      heap.push_back(Triple{b, rn, wn, iv, static_cast<int>(++pushed)});
+      heap.push_back(Triple{b, rn, wn, iv, ++pushed});
       if (first_contact) std::push_heap(heap.begin(), heap.end(), later);
     }
   };
@@ -232,7 +232,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if (any_level && heap.front().bound >= best - fraction_tolerance) {
       // Every contact left in the queue is no earlier than the queue's
       // smallest bound, within the tolerance of the best one found.
-      best = std::min(best, heap.front().bound);
+      if (heap.front().bound < best) {
+        best = heap.front().bound;
+        best_contact = PieceContact();  // a bound, not a contact found
+      }
       break;
     }
     if (first_contact) std::pop_heap(heap.begin(), heap.end(), later);

@@ -190,13 +190,17 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
   // edge's fraction is no later than the first colliding state found by
   // sampling; with a tolerance the bound is at most that much earlier than
   // with none (the search stops within it of the best contact found, and the
-  // full search's answer is no later than that contact).
+  // full search's answer is no later than that contact); and the bound is
+  // useful: on average not far below kFirstContact's (a bound stuck at 0
+  // would pass the rest).
   const examples::ExampleScene& scene = testing::allScenes()[8];
   ASSERT_EQ(scene.name, "trap");
   const MddScene mdd(scene.robot, scene.world);
   testing::Rng rng(testing::seed() * 103);
   constexpr double kTolerance = 0.05;
+  constexpr double kMinShareOfFirstContact = 0.8;  // mean kLastValid fraction over mean kFirstContact one
   int edges = 0, colliding = 0, looser = 0;
+  double sum_last_valid = 0.0, sum_first_contact = 0.0;
   while (edges < 200 * testing::scale()) {
     const EdgeMotion m = randomRotatingEdge(scene, mdd, rng);
     ++edges;
@@ -212,6 +216,8 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
     ASSERT_LE(full.fraction, 1.0);
     EXPECT_GE(cut.fraction, full.fraction - kTolerance - 1e-9) << "edge " << edges;
     looser += cut.fraction < full.fraction - 1e-9;
+    sum_last_valid += full.fraction;
+    sum_first_contact += mdd.checkEdge(m, EdgeQuery::kFirstContact).fraction;
     for (int k = 0; k <= 1000; ++k) {
       const double t = k / 1000.0;
       if (!mdd.collides(m.pose(t))) continue;
@@ -221,8 +227,11 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
     }
   }
   EXPECT_GT(colliding, edges / 10);
-  std::printf("kLastValid: %d of %d colliding edges have a looser bound with tolerance %g\n", looser, colliding,
-              kTolerance);
+  std::printf(
+      "kLastValid: %d of %d colliding edges have a looser bound with tolerance %g; mean fraction %.4f "
+      "(kFirstContact %.4f)\n",
+      looser, colliding, kTolerance, sum_last_valid / colliding, sum_first_contact / colliding);
+  EXPECT_GE(sum_last_valid, kMinShareOfFirstContact * sum_first_contact);
   // Out-of-range tolerances are refused.
   EdgeMotion m;
   m.axis_R = Eigen::Vector3d::UnitZ();
@@ -230,6 +239,7 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
   m.X_end = m.pose(1.0);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, -0.1), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, std::nan("")), InvalidInputError);
+  EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, 1.5), InvalidInputError);
 }
 
 TEST(MddSceneRotation, TheTreesCoverTheirPieces) {

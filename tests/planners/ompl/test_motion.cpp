@@ -182,6 +182,9 @@ TEST_F(LastValid, EdgeStartingInCollisionIsInvalidAtZero) {
   EXPECT_EQ(lv.second, 0.0);
   EXPECT_EQ(last, s1);
   EXPECT_TRUE(fx.mdd_motion->firstInvalid(s1.get(), s2.get()).start_collides);
+  EXPECT_TRUE(fx.mdd_motion->firstInvalid(s1.get(), s2.get(), EdgeQuery::kLastValid).start_collides);
+  // kValidity computes no first contact: refused, not a meaningless fraction.
+  EXPECT_THROW(fx.mdd_motion->firstInvalid(s1.get(), s2.get(), EdgeQuery::kValidity), InvalidInputError);
 }
 
 TEST_F(LastValid, ValidEdgeLeavesItUntouched) {

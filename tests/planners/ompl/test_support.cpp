@@ -437,7 +437,7 @@ void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, Edge
   }
   // Invalid: lastValid is a valid state before the first invalid fraction
   // (lastValid's own bound: EdgeQuery::kLastValid, equal to kFirstContact's
-  // on translation edges, possibly earlier on rotating ones).
+  // on translation edges, another lower bound on rotating ones).
   const EdgeContact first = mv.firstInvalid(s1, s2);
   const EdgeContact bound = mv.firstInvalid(s1, s2, EdgeQuery::kLastValid);
   ASSERT_TRUE(first.collides);

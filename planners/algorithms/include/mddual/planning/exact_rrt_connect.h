@@ -28,9 +28,8 @@
 // space's maximum extent below which a blocked extension adds nothing),
 // "rotate_first" (1: the two-edge extension where the space allows it; 0, the
 // default: straight edges everywhere). Rotating first was the default for a
-// while and made the planner 10x to 15x slower on the SE(2) maze and the
-// SE(3) cubicles (100 runs each, mdd checker: cubicles 0.034 s against
-// 0.0036 s straight, maze_se2 1.23 s against 0.225 s), so it is off.
+// while; it made the planner about 10x slower on the SE(2) maze and the SE(3)
+// cubicles (README, "The benchmark"), so it is off.
 #pragma once
 
 #include <memory>

@@ -47,7 +47,7 @@ DirectedClearance directedClearance(const MddScene& scene, const PlanningSpace& 
                                     double max_distance = std::numeric_limits<double>::infinity());
 
 /// The first contact on an edge under OMPL's interpolation (MddScene::checkEdge
-/// with first_contact): fraction exact for translation edges, a lower bound
+/// with EdgeQuery::kFirstContact): fraction exact for translation edges, a lower bound
 /// for rotating ones (contact: that of the enlarged robot on the failing
 /// sub-edge); 0 with start_collides when the start collides (contact: the
 /// colliding pair, point and normal NaN); +infinity when the edge is free.

@@ -109,8 +109,9 @@ class MddMotionValidator : public ompl::base::MotionValidator {
 
   /// The first invalid fraction of an edge (bounds included) and its contact
   /// (MddScene::checkEdge's EdgeQuery::kFirstContact). fraction = +inf for a
-  /// valid edge. With query = kLastValid: the looser bound that
-  /// checkMotion(s1, s2, lastValid) backs off from.
+  /// valid edge. With query = kLastValid: the bound that checkMotion(s1, s2,
+  /// lastValid) backs off from (another lower bound, usually coarser).
+  /// Throws InvalidInputError for kValidity (not a contact query).
   EdgeContact firstInvalid(const ompl::base::State* s1, const ompl::base::State* s2,
                            EdgeQuery query = EdgeQuery::kFirstContact) const;
 

@@ -67,7 +67,7 @@
 //    the round-off of OMPL's quaternion slerp (states stored with norms within
 //    1e-9 of 1). The enlargement at the leaves is at least delta /
 //    2^refinement_levels, which keeps false alarms to clearances below it.
-//    First contact (lastValid): triples wait in a queue ordered by a lower
+//    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
 //    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
 //    which the swept volumes meet; at the true first contact t* of a pair in
 //    the triple its volumes meet, so the bound is <= t*), and the search stops
@@ -76,7 +76,7 @@
 //    finest level with fraction <= t* (the enlarged sweep holds the true
 //    motion), or left with a bound >= f and <= t*: so f <= t*, a lower bound
 //    of the first contact, never later than it. Validity only
-//    (first_contact = false): a pair refuted at a coarse level is refined
+//    (EdgeQuery::kValidity): a pair refuted at a coarse level is refined
 //    at once, depth first, and the search stops at the first finest-level
 //    contact or when the true pieces of a refuted pair intersect at the
 //    refuted sweep's contact time (a state of the edge that collides).
@@ -127,6 +127,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -204,11 +205,11 @@ enum class EdgeQuery : std::uint8_t {
   /// what kValidity costs), and for a colliding edge a lower bound of its
   /// first contact: exact on translation edges; on rotating edges the earliest
   /// contact of the enlarged pieces at the level each (robot piece, world
-  /// piece, interval) reached, not refined to the finest level (an earlier,
-  /// cheaper bound than kFirstContact's). What OMPL's lastValid needs.
+  /// piece, interval) reached, not refined to the finest level: usually
+  /// cheaper than kFirstContact's bound, and not ordered against it (each is
+  /// no later than the true first contact). What OMPL's lastValid needs.
   kLastValid,
 };
-const char* toString(EdgeQuery query);
 
 /// Result of MddScene::checkEdge(): the first contact on an edge.
 struct EdgeContact {
@@ -216,11 +217,15 @@ struct EdgeContact {
   bool start_collides = false;  ///< the edge's start state collides (fraction 0)
   /// Fraction in [0, 1] of the first contact: every state before it is free.
   /// Exact for translation edges; for rotating edges a lower bound (the scheme
-  /// above; with EdgeQuery::kLastValid a looser one). +infinity when the
-  /// edge is free. With EdgeQuery::kValidity only `collides` is meaningful.
+  /// above; with EdgeQuery::kLastValid another, usually coarser one).
+  /// +infinity when the edge is free. With EdgeQuery::kValidity only
+  /// `collides` is meaningful.
   double fraction = std::numeric_limits<double>::infinity();
-  bool exact = true;     ///< fraction is exact (translation edge), not a bound
-  PieceContact contact;  ///< for rotating edges: the contact of the enlarged robot piece
+  bool exact = true;  ///< fraction is exact (translation edge), not a bound
+  /// For rotating edges: the contact of the enlarged robot piece; with
+  /// kLastValid empty (pieces -1) when the fraction is a bound of the search
+  /// rather than a contact found.
+  PieceContact contact;
   int pair_queries = 0;  ///< core queries run
   /// Rotating edges: (robot node, world node, time interval) triples tested
   /// (refinement included).
@@ -282,17 +287,18 @@ class MddScene {
   /// find the first contact (all candidate pairs); otherwise stop at any.
   SweepResult sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, bool first_contact = true) const;
 
-  /// The robot's motion along an edge (see the file comment). first_contact:
-  /// the first contact fraction (sub-edges in order from the start);
-  /// otherwise validity only: sub-edges in bisection order, any contact stops
-  /// a sweep, and a coarse sub-edge that fails is first tested at its middle
-  /// and end states with the true pieces (a collision there settles the edge
-  /// without refinement). Both modes agree on `collides`.
+  /// The robot's motion along an edge (see the file comment and EdgeQuery).
+  /// kValidity and kLastValid first test the end and middle states with the
+  /// true pieces (a collision there settles the verdict); kValidity then
+  /// stops at any contact. The three queries agree on `collides`.
   /// fraction_tolerance (kLastValid only, in [0, 1]): on rotating edges the
   /// search for the bound stops once it is within this much (a fraction of
   /// the edge) of the best contact found so far, so the bound may be up to
   /// that much earlier than the full search's. The motion validator passes
-  /// one step of OMPL's discrete check of the edge (its lastValid is no finer).
+  /// one step of OMPL's discrete check of the edge (its lastValid is no
+  /// finer; an edge of one step gets tolerance 1 and the first contact found
+  /// ends the search, as OMPL's own validator then returns 0). Throws
+  /// InvalidInputError for a tolerance outside [0, 1].
   EdgeContact checkEdge(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance = 0.0) const;
   /// checkEdge(motion, kFirstContact) or (first_contact = false) kValidity.
   EdgeContact checkEdge(const EdgeMotion& motion, bool first_contact = true) const {
@@ -329,6 +335,8 @@ class MddScene {
   /// is computed before): out->collides is false when no enlarged piece at
   /// the level its triple reached touches.
   void checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance, EdgeContact* out) const;
+  /// Whether the true robot collides at the edge's end or middle state.
+  bool endOrMiddleCollides(const EdgeMotion& motion, EdgeContact* out) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
   double setMargin(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;

@@ -26,6 +26,12 @@ constexpr double kSlerpRoundoffRel = 1e-8;
 /// whenever e > 0.05 r, 1.5x.
 constexpr double kTimeSplitAlways = 0.1;
 constexpr double kTimeSplitNever = 0.01;
+/// When neither node's radius exceeds the other's by more than this factor,
+/// both are split at once (four child triples). Measured on bugtrap
+/// (benchmarks/planning, rotating edges): 15% to 25% less time than
+/// splitting the larger node only, 1.5 about the same; splitting both
+/// whenever both have children made the apartment 20x slower.
+constexpr double kBothSplitRatio = 2.0;
 
 /// A time interval [ta, tb] of the edge and the pose the triples on it use.
 struct Interval {
@@ -264,6 +270,13 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       }
       if (split_time) {
         splitTime(t, I);
+      } else if (rn > 0.0 && rm > 0.0 && rn <= kBothSplitRatio * rm && rm <= kBothSplitRatio * rn) {
+        // Both nodes of similar size: their four child pairs at once (the
+        // two intermediate pairs would rarely be cleared).
+        for (const int nc : {N.left, N.right}) {
+          push(nc, worldChild(t.world, M.left), t.interval);
+          push(nc, worldChild(t.world, M.right), t.interval);
+        }
       } else if (rn >= rm) {
         push(N.left, t.world, t.interval);
         push(N.right, t.world, t.interval);

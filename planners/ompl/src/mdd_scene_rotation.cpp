@@ -47,7 +47,6 @@ struct Triple {
   int robot;     ///< robot node
   int world;     ///< world node, with its tree: 2 * node + tree (0: static, 1: overflow)
   int interval;
-  int seq;  ///< push order: among equal bounds the latest first (a dive to the leaves)
 };
 
 struct Scratch {
@@ -56,7 +55,7 @@ struct Scratch {
 };
 
 bool later(const Triple& a, const Triple& b) {
-  return a.bound > b.bound || (a.bound == b.bound && a.seq < b.seq);
+  return a.bound > b.bound;
 }
 
 }  // namespace
@@ -126,13 +125,12 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     return I.ta + (I.tb - I.ta) * (lo / I.length);
   };
   double best = kInf;  // smallest finest-level contact fraction found (kLastValid: any level)
-  int pushed = 0;
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
     if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
     const double b = bound(rn, wn, intervals[static_cast<std::size_t>(iv)]);
     if (b < best) {
-      heap.push_back(Triple{b, rn, wn, iv, ++pushed});
+      heap.push_back(Triple{b, rn, wn, iv});
       if (first_contact) std::push_heap(heap.begin(), heap.end(), later);
     }
   };

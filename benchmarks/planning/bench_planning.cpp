@@ -6,12 +6,13 @@
 // check. Prints Markdown tables.
 //
 //   mddual_bench_planning [--quick] [--states N] [--edges N] [--passes P] [--seed S] [--scene NAME] [--cpu]
-//                         [--config FILE.cfg ...] [--no-ccd]
+//                         [--config FILE.cfg ...] [--no-ccd] [--mdd-only]
 //
 // Scenes: the built-in example scenes, or (--config, repeatable) the SE(2)
 // and SE(3) scenes of benchmark configs, loaded as `mddual bench` loads them.
 // --no-ccd leaves out FCL's continuous validators (minutes per row on the
-// large mesh configs).
+// large mesh configs). --mdd-only times the MDD checkers alone (one line per
+// edge kind, for comparing two builds; no peer, so no ratio).
 //
 // Timing: each checker runs the same list of states (or edges) `passes` times
 // in one thread; a row reports the fastest pass's mean time per check (the
@@ -61,6 +62,7 @@ struct Options {
   bool cpu = false;                  ///< time with the thread's CPU clock
   std::vector<std::string> configs;  ///< benchmark configs to load instead of the example scenes
   bool ccd = true;                   ///< time FCL's continuous validators too
+  bool mdd_only = false;             ///< time the MDD checkers only (profiling; no peer, no ratio)
 };
 
 /// Set from --cpu: timePerItem reads the thread's CPU clock.
@@ -202,7 +204,7 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
   const double t_mdd = timePerItem(opt.states, opt.passes, [&] {
     for (const auto& st : states) sink += s.mdd_checker->isValid(st.get());
   });
-  const double t_fcl = timePerItem(opt.states, opt.passes, [&] {
+  const double t_fcl = opt.mdd_only ? 0.0 : timePerItem(opt.states, opt.passes, [&] {
     for (const auto& st : states) sink += s.fcl_checker->isValid(st.get());
   });
   const double q_mdd = static_cast<double>(s.mdd_checker->counts().pair_queries) /
@@ -223,12 +225,13 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
   mp::FclContinuousMotionValidator ca(s.fcl_si, s.space, s.fcl);
   naive.setTiming(false);
   ca.setTiming(false);
-  std::printf(
-      "| edges | valid (MDD) | MDD | pair queries | sub-edges | OMPL discrete + FCL | states | **discrete / "
-      "MDD** | valid / invalid edges only: discrete / MDD | OMPL discrete + MDD states | FCL CCD naive | FCL CCD CA | "
-      "CA "
-      "answers != MDD |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  if (!opt.mdd_only) {
+    std::printf(
+        "| edges | valid (MDD) | MDD | pair queries | sub-edges | OMPL discrete + FCL | states | **discrete / MDD** | "
+        "valid / invalid edges only: discrete / MDD | OMPL discrete + MDD states | FCL CCD naive | FCL CCD CA | CA "
+        "answers != MDD |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  }
   using Edges = std::vector<std::pair<ob::ScopedState<>, ob::ScopedState<>>>;
   const auto timeMdd = [&](const Edges& edges) {
     return timePerItem(static_cast<int>(edges.size()), opt.passes, [&] {
@@ -274,6 +277,13 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
       s.fcl_checker->resetCounts();
       const int n = opt.edges;
       const double m_mdd = timeMdd(edges);
+      if (opt.mdd_only) {
+        std::printf("| %s, %s | %.0f%% | checkMotion %s us | with lastValid %s us |\n",
+                    rotate ? "rotating" : "translation", full_range ? "length = range" : "length <= range",
+                    100.0 * static_cast<double>(valid_edges.size()) / n, us(m_mdd).c_str(),
+                    us(timeLastValid(edges, *s.mdd_motion)).c_str());
+        continue;
+      }
       const double m_disc = timeDiscrete(edges);
       const mp::CheckerCounts c = s.mdd_motion->counts();
       const double states_per_edge =
@@ -325,6 +335,7 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
           ca_text.c_str(), ca_differs_text.c_str());
     }
   }
+  if (opt.mdd_only) return;
   std::printf(
       "\n| edges, checkMotion with lastValid (first contact) | MDD | sub-edges | OMPL discrete + FCL | **discrete / "
       "MDD** | invalid edges: mean lastValid fraction MDD / discrete |\n|---|---|---|---|---|---|\n");
@@ -382,10 +393,13 @@ int main(int argc, char** argv) {
       opt.configs.emplace_back(argv[++i]);
     } else if (a == "--no-ccd") {
       opt.ccd = false;
+    } else if (a == "--mdd-only") {
+      opt.mdd_only = true;
+      opt.ccd = false;
     } else {
       std::fprintf(stderr,
                    "usage: %s [--quick] [--states N] [--edges N] [--passes P] [--seed S] [--scene NAME] [--cpu] "
-                   "[--config FILE.cfg ...] [--no-ccd]\n",
+                   "[--config FILE.cfg ...] [--no-ccd] [--mdd-only]\n",
                    argv[0]);
       return 2;
     }

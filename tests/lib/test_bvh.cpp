@@ -359,6 +359,62 @@ TEST(Bvh, CastFindsTheBruteForceFirstContact) {
   EXPECT_GT(starts, 0);
 }
 
+TEST(Bvh, CastStoppedWithinAToleranceBracketsTheBruteForceFirstContact) {
+  // stop_within w: the first contact lies in [lower_bound, distance], no
+  // longer than w, distance a pair's contact; w = 0 gives the exact one.
+  // Flat contacts (many pairs touching at nearly the same distance) are
+  // where the stop saves leaf calls: a slab of pieces against a slab.
+  Rng rng(61);
+  int stopped_early = 0, contacts = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    std::vector<Points> pa = randomPieces(rng, 120, 6.0), pb = randomPieces(rng, 30, 1.5);
+    for (Points& p : pa) {
+      for (Eigen::Vector3d& v : p) v.z() *= 0.05;  // a thin slab in z = 0
+    }
+    const std::vector<ConvexPolytope> ca = polytopes(pa), cb = polytopes(pb);
+    const Bvh a(pa), b(pb);
+    for (int q = 0; q < 6; ++q) {
+      Eigen::Isometry3d X = randomPose(rng, 3.0);
+      X.translation().z() = uniform(rng, 3.0, 6.0);
+      const Eigen::Vector3d u = -Eigen::Vector3d::UnitZ() + 0.2 * generators::randomUnitVector(rng);
+      const ToiLeaf leaf{&ca, &cb, X, u, kInf};
+      double brute = kInf;
+      for (int i = 0; i < a.numPieces(); ++i) {
+        for (int j = 0; j < b.numPieces(); ++j) brute = std::min(brute, leaf(i, j));
+      }
+      for (const double w : {0.0, 0.05, 0.5}) {
+        CastOptions options;
+        options.stop_within = w;
+        BvhStats stats, exact_stats;
+        const auto fn = [&](int i, int j, double) { return leaf(i, j); };
+        const CastHit hit = castFirst(a, b, X, u, kInf, fn, options, &stats);
+        castFirst(a, b, X, u, kInf, fn, CastOptions(), &exact_stats);
+        const std::string where = "trial " + std::to_string(trial) + " query " + std::to_string(q) + " w " +
+                                  std::to_string(w) + " brute " + std::to_string(brute);
+        if (!std::isfinite(brute)) {
+          EXPECT_EQ(hit.distance, kInf) << where;
+          EXPECT_EQ(hit.lower_bound, kInf) << where;
+          continue;
+        }
+        ++contacts;
+        EXPECT_EQ(leaf(hit.piece_a, hit.piece_b), hit.distance) << where;
+        EXPECT_LE(hit.lower_bound, brute) << where;
+        EXPECT_GE(hit.distance, brute) << where;
+        EXPECT_LE(hit.distance - hit.lower_bound, w) << where;
+        if (w == 0.0) {
+          EXPECT_EQ(hit.distance, brute) << where;
+          EXPECT_EQ(hit.lower_bound, brute) << where;
+        }
+        EXPECT_LE(stats.leaf_pairs, exact_stats.leaf_pairs) << where;
+        stopped_early += stats.leaf_pairs < exact_stats.leaf_pairs;
+      }
+    }
+  }
+  // Not a degenerate sample: contacts, and stops that saved leaf calls.
+  EXPECT_GT(contacts, 60);
+  EXPECT_GT(stopped_early, 10);
+}
+
 TEST(Bvh, CastWithAMarginCallsEveryPairItWouldCallWithoutAndMore) {
   // A leaf that reports no contact sees every pair the cast cannot rule out:
   // with a margin, a superset of the pairs seen without one, which include
@@ -539,6 +595,12 @@ TEST(Bvh, BadInputIsReportedByPieceAndPoint) {
                 "direction is zero");
   expectMessage([&] { castFirst(t, t, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), -1.0, none); },
                 "max_distance");
+  for (const double w : {-1.0, std::nan("")}) {
+    CastOptions options;
+    options.stop_within = w;
+    expectMessage([&] { castFirst(t, t, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), 1.0, none, options); },
+                  "stop_within");
+  }
   expectMessage(
       [&] { forEachOverlappingPair(t, t, Eigen::Isometry3d::Identity(), -1.0, [](int, int) { return true; }); },
       "margin_b");

@@ -221,6 +221,13 @@ struct CastOptions {
   bool first_contact = true;
   /// Query node hulls (both nodes must have one) for a tighter lower bound.
   bool use_hulls = true;
+  /// With first_contact: stop once every pair left is bounded below by the
+  /// best contact so far less this distance (>= 0, the units of
+  /// max_distance). The first contact then lies in [CastHit::lower_bound,
+  /// CastHit::distance], an interval no longer than stop_within. 0: the
+  /// exact first contact (a flat contact, where many pairs touch at nearly
+  /// the same distance, visits them all).
+  double stop_within = 0.0;
 };
 
 /// Result of castFirst(): the first contact distance and its pair.
@@ -228,6 +235,10 @@ struct CastHit {
   double distance = std::numeric_limits<double>::infinity();  ///< +infinity: no contact within max_distance
   int piece_a = -1;
   int piece_b = -1;
+  /// No pair touches before it (with first_contact): distance itself, or
+  /// with stop_within > 0 at most stop_within less (the smallest bound left
+  /// when the search stopped). +infinity when there is no contact.
+  double lower_bound = std::numeric_limits<double>::infinity();
 };
 
 /// The contact distance of one pair of pieces for castFirst(): the distance
@@ -249,7 +260,8 @@ using CastLeafFn = FunctionRef<double(int piece_a, int piece_b, double limit)>;
 /// pairs whose volumes meet within max_distance (the same as calling leaf on
 /// every pair when leaf reports only contacts of the pieces), or with
 /// first_contact = false the first one found. Throws InvalidInputError for a
-/// zero or non-finite u_A or a negative or NaN max_distance.
+/// zero or non-finite u_A, a negative or NaN max_distance or
+/// options.stop_within.
 CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& u_A,
                   double max_distance, CastLeafFn leaf, const CastOptions& options = CastOptions(),
                   BvhStats* stats = nullptr);

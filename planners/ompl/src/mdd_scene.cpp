@@ -293,7 +293,7 @@ SweepResult MddScene::sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d
 }
 
 SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
-                               bool first_contact) const {
+                               bool first_contact, double stop_within) const {
   SweepResult result;
   const double n = v_W.norm();
   if (!(n > 0.0) || !std::isfinite(n)) {
@@ -306,6 +306,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   CastOptions options;
   options.margin_b = setMargin(set);
   options.first_contact = first_contact;
+  options.stop_within = stop_within;
   // The cast keeps the smallest distance the leaf returns; the contact of
   // that pair is recorded here (same rule: strictly smaller than the best).
   int tree = 0;
@@ -338,13 +339,18 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   // One cast per world tree; the second only looks for contacts before the
   // first's (the best so far), and none is needed after any contact when
   // first_contact is false or after a start in contact.
+  // The lower bound: the smallest of the casts' (each bounds the contacts
+  // of its tree below the limit it was given, which no later contact beats).
   double limit = max_distance;
   for (tree = 0; tree < 2; ++tree) {
     if (worldTreeAt(tree).empty()) continue;
-    castFirst(worldTreeAt(tree), robot_tree_, X_WR, u, limit, leaf, options);
+    const CastHit hit = castFirst(worldTreeAt(tree), robot_tree_, X_WR, u, limit, leaf, options);
+    result.lower_bound = std::min(result.lower_bound, hit.lower_bound);
     if (result.start_collides || (!first_contact && result.distance < kInf)) break;
     limit = std::min(limit, result.distance);
   }
+  if (result.start_collides) result.lower_bound = 0.0;
+  result.lower_bound = std::min(result.lower_bound, result.distance);
   return result;
 }
 
@@ -376,13 +382,21 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
     const Eigen::Isometry3d X = motion.pose(0.0);
     const Eigen::Vector3d v = motion.p_end - motion.p_start;
     const double length = v.norm();
-    const SweepResult s = sweep(X, v, first_contact);
+    // kLastValid: the sweep may stop within the tolerance of its best contact.
+    const bool tolerant = query == EdgeQuery::kLastValid && fraction_tolerance > 0.0 && length > 0.0;
+    const SweepResult s =
+        tolerant ? sweepSet(0, X, v, length, true, fraction_tolerance * length) : sweep(X, v, first_contact);
     out.pair_queries += s.pair_queries;
     if (s.start_collides || s.distance <= length) {
       out.collides = true;
       out.start_collides = s.start_collides;
       out.fraction = s.start_collides ? 0.0 : std::min(1.0, s.distance / length);
       out.contact = s.contact;
+      if (tolerant && s.lower_bound < s.distance) {
+        out.fraction = std::min(1.0, s.lower_bound / length);
+        out.exact = false;
+        out.contact = PieceContact();  // a bound, not a contact found
+      }
     } else if (motion.endDiffers()) {
       PieceContact which;
       if (collidesSet(0, motion.X_end, &out.pair_queries, &which)) {

@@ -134,13 +134,21 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PairLoop, ::testing::Range(0, testing::kSceneCo
 
 /// A rotating edge from a free random pose: up to 4 m of translation, a
 /// rotation by up to pi about a random axis.
-EdgeMotion randomRotatingEdge(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
+/// An edge from a random free pose, not moving yet (the end is the start).
+EdgeMotion randomFreeStart(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
   EdgeMotion m;
   Eigen::Isometry3d X = randomPose(scene, rng);
   while (mdd.collides(X)) X = randomPose(scene, rng);
   m.p_start = X.translation();
+  m.p_end = m.p_start;
   m.q_start = Eigen::Quaterniond(X.linear());
   m.R_start = X.linear();
+  m.X_end = X;
+  return m;
+}
+
+EdgeMotion randomRotatingEdge(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
+  EdgeMotion m = randomFreeStart(scene, mdd, rng);
   m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, 4.0)(rng) * generators::randomUnitVector(rng);
   m.axis_R = generators::randomUnitVector(rng);
   m.angle = std::uniform_real_distribution<double>(0.0, kPi)(rng);
@@ -240,6 +248,51 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, -0.1), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, std::nan("")), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, 1.5), InvalidInputError);
+}
+
+TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {
+  // EdgeQuery::kLastValid on translation edges of the trap and the cubicles
+  // (flat walls: many pairs touch at nearly the same distance): the verdict
+  // of kValidity; the fraction in [f - tolerance, f], f the exact contact
+  // of the loop over candidate pairs; marked exact only when it is f (its
+  // contact then named), else a bound with no pair.
+  constexpr double kTolerance = 0.05;
+  int colliding = 0, bounds = 0, edges = 0;
+  for (const int k : {7, 8}) {
+    const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(k)];
+    const MddScene mdd(scene.robot, scene.world);
+    testing::Rng rng(testing::seed() * 107 + static_cast<std::uint64_t>(k));
+    for (int e = 0; e < 150 * testing::scale(); ++e, ++edges) {
+      EdgeMotion m = randomFreeStart(scene, mdd, rng);
+      const Eigen::Isometry3d X = m.pose(0.0);
+      const Eigen::Vector3d v_W =
+          std::uniform_real_distribution<double>(0.5, 6.0)(rng) * generators::randomUnitVector(rng);
+      m.p_end = m.p_start + v_W;
+      m.X_end = m.pose(1.0);
+      const double exact = pairLoopSweep(mdd, 0, X, v_W, v_W.norm()) / v_W.norm();
+      const EdgeContact any = mdd.checkEdge(m, EdgeQuery::kValidity);
+      const EdgeContact cut = mdd.checkEdge(m, EdgeQuery::kLastValid, kTolerance);
+      const std::string where = scene.name + " edge " + std::to_string(e) + " exact " + std::to_string(exact);
+      ASSERT_EQ(cut.collides, any.collides) << where;
+      ASSERT_EQ(cut.collides, exact <= 1.0) << where;
+      if (!cut.collides) continue;
+      ++colliding;
+      EXPECT_LE(cut.fraction, exact + 1e-12) << where;
+      EXPECT_GE(cut.fraction, exact - kTolerance - 1e-12) << where;
+      if (cut.exact) {
+        EXPECT_NEAR(cut.fraction, exact, 1e-12) << where;
+        EXPECT_GE(cut.contact.robot_piece, 0) << where;
+      } else {
+        ++bounds;
+        EXPECT_EQ(cut.contact.robot_piece, -1) << where;
+      }
+      // Tolerance 0: the exact contact.
+      EXPECT_NEAR(mdd.checkEdge(m, EdgeQuery::kLastValid).fraction, exact, 1e-12) << where;
+    }
+  }
+  // Not a degenerate sample: contacts, and searches that stopped early.
+  EXPECT_GT(colliding, edges / 10);
+  EXPECT_GT(bounds, 5);
 }
 
 TEST(MddSceneRotation, TheTreesCoverTheirPieces) {

@@ -31,7 +31,8 @@ constexpr int kThreads = 8;
 struct Answers {
   std::vector<char> mdd_state, fcl_state, motion, fcl_motion;
   std::vector<double> last_valid, clearance;
-  std::vector<double> separation;  ///< MddStateValidityChecker::clearance (exact distance)
+  std::vector<double> last_valid_step;  ///< one step of OMPL's discrete check of the edge (lastValid's tolerance)
+  std::vector<double> separation;       ///< MddStateValidityChecker::clearance (exact distance)
 };
 
 struct Workload {
@@ -71,6 +72,7 @@ Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Wo
   a.motion.resize(ne);
   a.fcl_motion.resize(ne);
   a.last_valid.resize(ne);
+  a.last_valid_step.resize(ne);
   for (std::size_t k = 0; k < ns; ++k) {
     const std::size_t i = (k + offset) % ns;
     a.mdd_state[i] = fx.mdd_checker->isValid(w.states[i].get());
@@ -87,6 +89,7 @@ Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Wo
     std::pair<ob::State*, double> lv(last.get(), -1.0);
     fx.mdd_motion->checkMotion(s1, s2, lv);
     a.last_valid[i] = lv.second;
+    a.last_valid_step[i] = 1.0 / std::max(1u, fx.si->getStateSpace()->validSegmentCount(s1, s2));
     a.fcl_motion[i] = ccd.checkMotion(s1, s2);
   }
   return a;
@@ -242,8 +245,11 @@ TEST(UserSpaceThreads, CompoundSpaceSameAnswersFromEightThreads) {
 void expectSameMdd(const Answers& a, const Answers& b, int thread) {
   EXPECT_EQ(a.mdd_state, b.mdd_state) << "thread " << thread;
   EXPECT_EQ(a.motion, b.motion) << "thread " << thread;
+  // lastValid's search stops within one discrete step of the best contact it
+  // found, and an updated scene's trees (static and overflow) visit the pairs
+  // in another order than a rebuilt scene's: the same answer within a step.
   for (std::size_t i = 0; i < a.last_valid.size(); ++i) {
-    EXPECT_NEAR(a.last_valid[i], b.last_valid[i], 1e-12) << "thread " << thread << " edge " << i;
+    EXPECT_NEAR(a.last_valid[i], b.last_valid[i], a.last_valid_step[i] + 1e-12) << "thread " << thread << " edge " << i;
   }
   EXPECT_EQ(a.separation, b.separation) << "thread " << thread;
   for (std::size_t i = 0; i < a.clearance.size(); ++i) {

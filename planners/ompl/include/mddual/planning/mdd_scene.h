@@ -188,6 +188,9 @@ struct SweepResult {
   /// was asked for (first_contact = false), a contact distance, not
   /// necessarily the first.
   double distance = std::numeric_limits<double>::infinity();
+  /// No contact before it (first_contact only): `distance` itself, or at most
+  /// the sweep's stop_within less (MddScene::sweepSet). +infinity when free.
+  double lower_bound = std::numeric_limits<double>::infinity();
   PieceContact contact;  ///< the pair of that contact
   int pair_queries = 0;  ///< core queries (toi/intersect) run
 };
@@ -203,11 +206,14 @@ enum class EdgeQuery : std::uint8_t {
   kFirstContact,
   /// `collides` as kValidity decides it (computed first, so a free edge costs
   /// what kValidity costs), and for a colliding edge a lower bound of its
-  /// first contact: exact on translation edges; on rotating edges the earliest
-  /// contact of the enlarged pieces at the level each (robot piece, world
-  /// piece, interval) reached, not refined to the finest level: usually
-  /// cheaper than kFirstContact's bound, and not ordered against it (each is
-  /// no later than the true first contact). What OMPL's lastValid needs.
+  /// first contact: on translation edges the exact one, or with a fraction
+  /// tolerance at most that much earlier (the sweep stops once no pair left
+  /// can touch earlier than the best contact less the tolerance); on rotating
+  /// edges the earliest contact of the enlarged pieces at the level each
+  /// (robot piece, world piece, interval) reached, not refined to the finest
+  /// level: usually cheaper than kFirstContact's bound, and not ordered
+  /// against it (each is no later than the true first contact). What OMPL's
+  /// lastValid needs.
   kLastValid,
 };
 
@@ -221,7 +227,10 @@ struct EdgeContact {
   /// +infinity when the edge is free. With EdgeQuery::kValidity only
   /// `collides` is meaningful.
   double fraction = std::numeric_limits<double>::infinity();
-  bool exact = true;  ///< fraction is exact (translation edge), not a bound
+  /// fraction is exact (a translation edge's contact), not a bound (rotating
+  /// edges; translation edges with kLastValid and a tolerance, unless the
+  /// sweep ran to the end)
+  bool exact = true;
   /// For rotating edges: the contact of the enlarged robot piece; with
   /// kLastValid empty (pieces -1) when the fraction is a bound of the search
   /// rather than a contact found.
@@ -291,10 +300,10 @@ class MddScene {
   /// kValidity and kLastValid first test the end and middle states with the
   /// true pieces (a collision there settles the verdict); kValidity then
   /// stops at any contact. The three queries agree on `collides`.
-  /// fraction_tolerance (kLastValid only, in [0, 1]): on rotating edges the
-  /// search for the bound stops once it is within this much (a fraction of
-  /// the edge) of the best contact found so far, so the bound may be up to
-  /// that much earlier than the full search's. The motion validator passes
+  /// fraction_tolerance (kLastValid only, in [0, 1]): the search for the
+  /// bound stops once it is within this much (a fraction of the edge) of the
+  /// best contact found so far, so the bound may be up to that much earlier
+  /// than the full search's (on translation edges: than the exact contact). The motion validator passes
   /// one step of OMPL's discrete check of the edge (its lastValid is no
   /// finer; an edge of one step gets tolerance 1 and the first contact found
   /// ends the search, as OMPL's own validator then returns 0). Throws
@@ -310,8 +319,10 @@ class MddScene {
   /// Piece i of set `set` (every set has robot().pieces().size() pieces).
   const scene::Piece& setPiece(int set, int i) const;
   bool collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const;
+  /// stop_within (>= 0; first_contact only): castFirst's CastOptions::stop_within,
+  /// SweepResult::lower_bound its CastHit::lower_bound.
   SweepResult sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
-                       bool first_contact) const;
+                       bool first_contact, double stop_within = 0.0) const;
   /// Appends the candidate world pieces of robot piece `piece` of set `set`
   /// moving from X_WR by s v_W, s in [0, max_distance / |v_W|] (v_W may be
   /// zero; max_distance may be +infinity).

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -248,6 +249,41 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, -0.1), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, std::nan("")), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, 1.5), InvalidInputError);
+}
+
+TEST(MddSceneRotation, ValidityTestsTheProbeStatesBeforeAnySearch) {
+  // A rotating edge is first tested at its end, middle, quarters and eighths
+  // (in that order): when one collides, kValidity answers with it and no
+  // triple is searched; otherwise the search runs.
+  const examples::ExampleScene& scene = testing::allScenes()[8];
+  ASSERT_EQ(scene.name, "trap");
+  const MddScene mdd(scene.robot, scene.world);
+  testing::Rng rng(testing::seed() * 109);
+  const std::array<double, 8> probes = {1.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875};
+  int by_probe = 0, by_search = 0;
+  for (int e = 0; e < 200 * testing::scale(); ++e) {
+    const EdgeMotion m = randomRotatingEdge(scene, mdd, rng);
+    double first_probe = kInf;
+    for (const double t : probes) {
+      if (mdd.collides(m.pose(t))) {
+        first_probe = t;
+        break;
+      }
+    }
+    const EdgeContact any = mdd.checkEdge(m, EdgeQuery::kValidity);
+    if (first_probe < kInf) {
+      ++by_probe;
+      EXPECT_TRUE(any.collides) << "edge " << e;
+      EXPECT_EQ(any.fraction, first_probe) << "edge " << e;
+      EXPECT_EQ(any.sub_edges, 0) << "edge " << e;
+    } else {
+      by_search += any.collides;
+      EXPECT_GT(any.sub_edges, 0) << "edge " << e;
+    }
+  }
+  // Both ways of finding a collision occur.
+  EXPECT_GT(by_probe, 10);
+  EXPECT_GT(by_search, 0);
 }
 
 TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {

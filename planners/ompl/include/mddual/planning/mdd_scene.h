@@ -81,11 +81,11 @@
 //    contact or when the true pieces of a refuted pair intersect at the
 //    refuted sweep's contact time (a state of the edge that collides).
 //    lastValid (EdgeQuery::kLastValid): the verdict as in validity only (a
-//    colliding end or middle state settles it first); on a colliding edge,
-//    the first-contact queue with a leaf contact at ANY level taken as a
-//    bound (piece i enlarged at level k holds the true piece over its
-//    interval, so its sweep's contact fraction is no later than the pair's
-//    true first contact), stopped once the queue's smallest bound b is within
+//    colliding probe state, the end, middle, quarters or eighths, settles it
+//    first); on a colliding edge, the first-contact queue with a leaf
+//    contact at ANY level taken as a bound (piece i enlarged at level k
+//    holds the true piece over its interval, so its sweep's contact fraction
+//    is no later than the pair's true first contact), stopped once the queue's smallest bound b is within
 //    the tolerance of the best contact f found; it returns min(f, b). By the
 //    argument for f above that is no later than t*, and it is at most the
 //    tolerance below what the search run to the end would return (which is
@@ -297,9 +297,10 @@ class MddScene {
   SweepResult sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, bool first_contact = true) const;
 
   /// The robot's motion along an edge (see the file comment and EdgeQuery).
-  /// kValidity and kLastValid first test the end and middle states with the
-  /// true pieces (a collision there settles the verdict); kValidity then
-  /// stops at any contact. The three queries agree on `collides`.
+  /// kValidity, and kLastValid on rotating edges, first test a few states
+  /// with the true pieces (probeStatesCollide: the end and the middle, on
+  /// rotating edges also the quarters and eighths; a collision there settles
+  /// the verdict); kValidity then stops at any contact. The three queries agree on `collides`.
   /// fraction_tolerance (kLastValid only, in [0, 1]): the search for the
   /// bound stops once it is within this much (a fraction of the edge) of the
   /// best contact found so far, so the bound may be up to that much earlier
@@ -346,8 +347,9 @@ class MddScene {
   /// is computed before): out->collides is false when no enlarged piece at
   /// the level its triple reached touches.
   void checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance, EdgeContact* out) const;
-  /// Whether the true robot collides at the edge's end or middle state.
-  bool endOrMiddleCollides(const EdgeMotion& motion, EdgeContact* out) const;
+  /// Whether the true robot collides at one of the edge's probe states: the
+  /// end and the middle; on a rotating edge also the quarters and eighths.
+  bool probeStatesCollide(const EdgeMotion& motion, EdgeContact* out) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
   double setMargin(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;

@@ -211,10 +211,15 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
                        static_cast<double>(s.mdd_checker->counts().state_checks);
   const double q_fcl = static_cast<double>(s.fcl_checker->counts().pair_queries) /
                        static_cast<double>(s.fcl_checker->counts().state_checks);
-  std::printf(
-      "State checks (%d random states, %.0f%% invalid): MDD %s us (%.2f pair queries), FCL %s us (%.2f object "
-      "pairs); FCL / MDD = %.2fx\n\n",
-      opt.states, 100.0 * invalid / opt.states, us(t_mdd).c_str(), q_mdd, us(t_fcl).c_str(), q_fcl, t_fcl / t_mdd);
+  if (opt.mdd_only) {
+    std::printf("State checks (%d random states, %.0f%% invalid): MDD %s us (%.2f pair queries)\n\n", opt.states,
+                100.0 * invalid / opt.states, us(t_mdd).c_str(), q_mdd);
+  } else {
+    std::printf(
+        "State checks (%d random states, %.0f%% invalid): MDD %s us (%.2f pair queries), FCL %s us (%.2f object "
+        "pairs); FCL / MDD = %.2fx\n\n",
+        opt.states, 100.0 * invalid / opt.states, us(t_mdd).c_str(), q_mdd, us(t_fcl).c_str(), q_fcl, t_fcl / t_mdd);
+  }
 
   // ---- Edges.
   const double range = 0.2 * (s.space->bounds().max() - s.space->bounds().min()).norm();

@@ -409,6 +409,11 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
         out.fraction = std::min(1.0, s.lower_bound / length);
         out.exact = false;
         out.contact = PieceContact();  // a bound, not a contact found
+        // A bound of 0 may stop the sweep before the pair in contact at the
+        // start is visited: whether the start collides is asked directly.
+        if (out.fraction == 0.0 && !out.start_collides) {
+          out.start_collides = collidesSet(0, X, &out.pair_queries, nullptr);
+        }
       }
     } else if (motion.endDiffers()) {
       PieceContact which;

@@ -133,13 +133,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, PairLoop, ::testing::Range(0, testing::kSceneCo
 
 // ---- Rotating edges -----------------------------------------------------------------
 
-/// A rotating edge from a free random pose: up to 4 m of translation, a
-/// rotation by up to pi about a random axis.
-/// An edge from a random free pose, not moving yet (the end is the start).
-EdgeMotion randomFreeStart(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
+/// An edge from a random pose that is free (or, when asked, collides), not
+/// moving yet (the end is the start).
+EdgeMotion randomStart(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng,
+                       bool colliding = false) {
   EdgeMotion m;
   Eigen::Isometry3d X = randomPose(scene, rng);
-  while (mdd.collides(X)) X = randomPose(scene, rng);
+  while (mdd.collides(X) != colliding) X = randomPose(scene, rng);
   m.p_start = X.translation();
   m.p_end = m.p_start;
   m.q_start = Eigen::Quaterniond(X.linear());
@@ -148,8 +148,10 @@ EdgeMotion randomFreeStart(const examples::ExampleScene& scene, const MddScene& 
   return m;
 }
 
+/// A rotating edge from a free random pose: up to 4 m of translation, a
+/// rotation by up to pi about a random axis.
 EdgeMotion randomRotatingEdge(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
-  EdgeMotion m = randomFreeStart(scene, mdd, rng);
+  EdgeMotion m = randomStart(scene, mdd, rng);
   m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, 4.0)(rng) * generators::randomUnitVector(rng);
   m.axis_R = generators::randomUnitVector(rng);
   m.angle = std::uniform_real_distribution<double>(0.0, kPi)(rng);
@@ -293,13 +295,15 @@ TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {
   // of the loop over candidate pairs; marked exact only when it is f (its
   // contact then named), else a bound with no pair.
   constexpr double kTolerance = 0.05;
-  int colliding = 0, bounds = 0, edges = 0;
+  int colliding = 0, bounds = 0, edges = 0, starts = 0;
   for (const int k : {7, 8}) {
     const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(k)];
     const MddScene mdd(scene.robot, scene.world);
     testing::Rng rng(testing::seed() * 107 + static_cast<std::uint64_t>(k));
     for (int e = 0; e < 150 * testing::scale(); ++e, ++edges) {
-      EdgeMotion m = randomFreeStart(scene, mdd, rng);
+      // One edge in five starts in collision (the bound is then 0 and the
+      // start must be reported as colliding).
+      EdgeMotion m = randomStart(scene, mdd, rng, e % 5 == 4);
       const Eigen::Isometry3d X = m.pose(0.0);
       const Eigen::Vector3d v_W =
           std::uniform_real_distribution<double>(0.5, 6.0)(rng) * generators::randomUnitVector(rng);
@@ -313,6 +317,8 @@ TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {
       ASSERT_EQ(cut.collides, exact <= 1.0) << where;
       if (!cut.collides) continue;
       ++colliding;
+      starts += exact == 0.0;
+      EXPECT_EQ(cut.start_collides, exact == 0.0) << where;
       EXPECT_LE(cut.fraction, exact + 1e-12) << where;
       EXPECT_GE(cut.fraction, exact - kTolerance - 1e-12) << where;
       if (cut.exact) {
@@ -328,7 +334,8 @@ TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {
   }
   // Not a degenerate sample: contacts, and searches that stopped early.
   EXPECT_GT(colliding, edges / 10);
-  EXPECT_GT(bounds, 5);
+  EXPECT_GT(bounds, colliding / 20);
+  EXPECT_GE(starts, edges / 5);
 }
 
 TEST(MddSceneRotation, TheTreesCoverTheirPieces) {

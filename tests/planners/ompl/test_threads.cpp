@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -32,6 +33,7 @@ struct Answers {
   std::vector<char> mdd_state, fcl_state, motion, fcl_motion;
   std::vector<double> last_valid, clearance;
   std::vector<double> last_valid_step;  ///< one step of OMPL's discrete check of the edge (lastValid's tolerance)
+  std::vector<double> first_contact;    ///< firstInvalid(kFirstContact).fraction (+inf on a valid edge)
   std::vector<double> separation;       ///< MddStateValidityChecker::clearance (exact distance)
 };
 
@@ -73,6 +75,7 @@ Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Wo
   a.fcl_motion.resize(ne);
   a.last_valid.resize(ne);
   a.last_valid_step.resize(ne);
+  a.first_contact.resize(ne);
   for (std::size_t k = 0; k < ns; ++k) {
     const std::size_t i = (k + offset) % ns;
     a.mdd_state[i] = fx.mdd_checker->isValid(w.states[i].get());
@@ -90,6 +93,8 @@ Answers run(const Fixture& fx, const FclContinuousMotionValidator& ccd, const Wo
     fx.mdd_motion->checkMotion(s1, s2, lv);
     a.last_valid[i] = lv.second;
     a.last_valid_step[i] = 1.0 / std::max(1u, fx.si->getStateSpace()->validSegmentCount(s1, s2));
+    a.first_contact[i] =
+        a.motion[i] ? std::numeric_limits<double>::infinity() : fx.mdd_motion->firstInvalid(s1, s2).fraction;
     a.fcl_motion[i] = ccd.checkMotion(s1, s2);
   }
   return a;
@@ -250,6 +255,15 @@ void expectSameMdd(const Answers& a, const Answers& b, int thread) {
   // in another order than a rebuilt scene's: the same answer within a step.
   for (std::size_t i = 0; i < a.last_valid.size(); ++i) {
     EXPECT_NEAR(a.last_valid[i], b.last_valid[i], a.last_valid_step[i] + 1e-12) << "thread " << thread << " edge " << i;
+    // Translation edges (even i: makeWorkload): b's lastValid within a step
+    // before the exact first contact of the scene built from scratch (a),
+    // b's from the updated scene's two trees.
+    if (i % 2 == 0 && !a.motion[i]) {
+      EXPECT_EQ(b.first_contact[i], a.first_contact[i]) << "thread " << thread << " edge " << i;
+      EXPECT_LE(b.last_valid[i], a.first_contact[i]) << "thread " << thread << " edge " << i;
+      EXPECT_GE(b.last_valid[i], a.first_contact[i] - a.last_valid_step[i] - 1e-6)
+          << "thread " << thread << " edge " << i;
+    }
   }
   EXPECT_EQ(a.separation, b.separation) << "thread " << thread;
   for (std::size_t i = 0; i < a.clearance.size(); ++i) {

@@ -81,8 +81,10 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     collides; may be invalid although the motion is free when it passes
 ///     within delta / 2^levels of an obstacle (MddScene's sub-edge scheme).
 ///   - checkMotion(s1, s2, lastValid), on an invalid edge: f = the first
-///     invalid fraction (the first contact, exact for translation edges and a
-///     lower bound for rotating ones, or where the position leaves the bounds,
+///     invalid fraction (a lower bound of the first contact within one step
+///     of OMPL's discrete check: on translation edges at most that step
+///     before the exact contact, on rotating ones MddScene's kLastValid
+///     bound; or where the position leaves the bounds,
 ///     or 1 when s2 is out of bounds otherwise). lastValid.second = f - b for
 ///     the smallest b in {1e-9, 1e-8, ...} whose state passes si->isValid;
 ///     lastValid.first (when not null) receives that state, interpolated by
@@ -90,9 +92,10 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     exists (or f = 0: the start collides or is out of bounds), lastValid =
 ///     (copy of s1, 0). On a valid edge lastValid is not touched.
 ///   - s1 is not assumed valid: an edge whose start collides is invalid.
-///   - checkMotion(s1, s2) (validity only) first tests s2 and then the middle
-///     state (mddual::intersect, early exit), as OMPL's discrete validator
-///     orders its samples: most invalid edges end after one cheap state test.
+///   - checkMotion(s1, s2) (validity only) first tests s2, the middle state
+///     and, on rotating edges, the quarters and eighths (mddual::intersect,
+///     early exit), as OMPL's discrete validator orders its samples: most
+///     invalid edges end after a few cheap state tests.
 ///     Only then the sweep (rotating edges: sub-edges in bisection order, and a
 ///     failing coarse sub-edge is settled by a true colliding state before it
 ///     is refined). These shortcuts only ever return "invalid" for an edge

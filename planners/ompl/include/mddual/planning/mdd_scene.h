@@ -24,7 +24,8 @@
 //
 //  - checkEdge(motion): an edge under OMPL's interpolation (EdgeMotion).
 //    Translation edges: sweep() at the start orientation, exact; the first
-//    contact fraction is exact. Rotating edges: SOUND, never "free" when the
+//    contact fraction is exact (kLastValid with a tolerance: a lower bound at
+//    most the tolerance below it, castFirst's stop_within). Rotating edges: SOUND, never "free" when the
 //    motion collides, by a branch and bound over triples (robot node N, world
 //    node M, time interval I = [ta, tb]) of the two hierarchies:
 //      Let tm be the middle of I. The rotation is about a fixed axis of the
@@ -108,7 +109,8 @@
 // Verdicts, first-contact distances and translation edges' fractions do not
 // depend on the history of updates (test_mdd_scene compares them with a scene
 // built from scratch); which pair is reported at a tie, the contact a yes/no
-// sweep stops at, and a rotating edge's bound and false alarms (within the
+// sweep stops at, kLastValid's bound with a tolerance (within it of the
+// exact contact on translation edges), and a rotating edge's bound and false alarms (within the
 // enlargement) may depend on the shape of the world's trees, as they may for
 // any two builds of the same pieces.
 // Warm starts are keyed by the world piece's id (scene::World), which an
@@ -188,8 +190,9 @@ struct SweepResult {
   /// was asked for (first_contact = false), a contact distance, not
   /// necessarily the first.
   double distance = std::numeric_limits<double>::infinity();
-  /// No contact before it (first_contact only): `distance` itself, or at most
-  /// the sweep's stop_within less (MddScene::sweepSet). +infinity when free.
+  /// No contact before it (first_contact only; without it, only a copy of
+  /// `distance`): `distance` itself, or at most the sweep's stop_within less
+  /// (MddScene::sweepSet). +infinity when free.
   double lower_bound = std::numeric_limits<double>::infinity();
   PieceContact contact;  ///< the pair of that contact
   int pair_queries = 0;  ///< core queries (toi/intersect) run
@@ -222,18 +225,20 @@ struct EdgeContact {
   bool collides = false;        ///< some state of the edge (closed, both ends included) collides
   bool start_collides = false;  ///< the edge's start state collides (fraction 0)
   /// Fraction in [0, 1] of the first contact: every state before it is free.
-  /// Exact for translation edges; for rotating edges a lower bound (the scheme
-  /// above; with EdgeQuery::kLastValid another, usually coarser one).
+  /// Exact for translation edges (with EdgeQuery::kLastValid and a tolerance,
+  /// a lower bound at most the tolerance below it: see `exact`); for rotating
+  /// edges a lower bound (the scheme above; with kLastValid another, usually
+  /// coarser one).
   /// +infinity when the edge is free. With EdgeQuery::kValidity only
   /// `collides` is meaningful.
   double fraction = std::numeric_limits<double>::infinity();
   /// fraction is exact (a translation edge's contact), not a bound (rotating
-  /// edges; translation edges with kLastValid and a tolerance, unless the
-  /// sweep ran to the end)
+  /// edges; translation edges with kLastValid and a tolerance when the bound
+  /// the sweep stopped at is below the contact it found)
   bool exact = true;
-  /// For rotating edges: the contact of the enlarged robot piece; with
-  /// kLastValid empty (pieces -1) when the fraction is a bound of the search
-  /// rather than a contact found.
+  /// For rotating edges: the contact of the enlarged robot piece. With
+  /// kLastValid (either kind of edge) empty (pieces -1) when the fraction is
+  /// a bound of the search rather than a contact found.
   PieceContact contact;
   int pair_queries = 0;  ///< core queries run
   /// Rotating edges: (robot node, world node, time interval) triples tested

@@ -138,6 +138,34 @@ TEST(ThinWall, DiscreteValidatorPassesThroughItOursDoesNot) {
   EXPECT_GT(naive_passes, n / 2);     // the naive solver is a 10-sample discrete check
 }
 
+// Found by MotionSoundness at MDDUAL_PLANNING_SCALE=20 on the urdf scene:
+// FCL's bisection put this translation edge's first contact 5.55e-7 of the
+// edge after ours. The brute force (independent of both) has the robot
+// touching at our fraction and 4.15e-7 deep at FCL's: FCL's intersection test
+// missed that penetration, and ours is the exact contact.
+TEST(MotionRegression, UrdfContactThatFclSeesLate) {
+  const Fixture fx = testing::makeFixture(testing::allScenes()[4]);
+  ASSERT_EQ(fx.scene.name, "urdf");
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+  const Eigen::Quaterniond q(-0.44207756122140607, 0.72825734729570046, 0.25528676762021874, -0.45720600636079145);
+  Eigen::Isometry3d X1 = Eigen::Isometry3d::Identity(), X2 = Eigen::Isometry3d::Identity();
+  X1.linear() = X2.linear() = q.toRotationMatrix();
+  X1.translation() << 3.8480775775434095, 1.3482686101760091, 3.802494305976039;
+  X2.translation() << 5.3068438714743058, 0.00017899063311910268, 5.152350275553605;
+  fx.space->setPose(X1, s1.get());
+  fx.space->setPose(X2, s2.get());
+  const EdgeContact c = fx.mdd_motion->firstInvalid(s1.get(), s2.get());
+  ASSERT_TRUE(c.collides);
+  EXPECT_TRUE(c.exact);
+  EXPECT_NEAR(c.fraction, 0.94964930164692862, 1e-12);
+  const EdgeMotion m = fx.space->motion(s1.get(), s2.get());
+  const double fcl_fraction = 0.94964985710407657;  // FCL's bisection, as measured
+  EXPECT_LE(testing::distanceToTouching(*fx.mdd, m.pose(c.fraction), 1e-6),
+            testing::touchTolerance(*fx.mdd, m.pose(c.fraction)));
+  EXPECT_GT(testing::distanceToTouching(*fx.mdd, m.pose(fcl_fraction), 1e-6), 1e-7);  // deep where FCL first sees it
+  EXPECT_TRUE(fx.mdd->collides(m.pose(fcl_fraction)));
+}
+
 // ---- lastValid ------------------------------------------------------------------------
 
 class LastValid : public ::testing::Test {

@@ -389,9 +389,9 @@ double fclBisect(const Fixture& fx, const ob::State* s1, const ob::State* s2, do
 std::string describe(const EdgeTally& t) {
   char line[400];
   std::snprintf(line, sizeof line,
-                "edges: %d, valid %d, misses %d, early %d, fractions checked %d (errors %d, grazing %d, worst %.2e), "
-                "rotating false alarms %d, FCL samples %d",
-                t.edges, t.valid, t.misses, t.early, t.fraction_checked, t.fraction_errors, t.grazing,
+                "edges: %d, valid %d, misses %d, early %d, fractions checked %d (errors %d, grazing %d, FCL late %d, "
+                "worst %.2e), rotating false alarms %d, FCL samples %d",
+                t.edges, t.valid, t.misses, t.early, t.fraction_checked, t.fraction_errors, t.grazing, t.fcl_late,
                 t.worst_fraction_error, t.false_alarms, t.samples);
   return line;
 }
@@ -505,6 +505,16 @@ void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, Edge
   }
   const double f_fcl = fclBisect(fx, s1, s2, lo, hi, 1e-13);
   const double err = std::abs(f_fcl - first.fraction);
+  if (err > 1e-9 && f_fcl > first.fraction) {
+    // FCL's intersection test can miss a penetration of a few 1e-7 (a pinned
+    // case in test_motion): FCL later than us is FCL late when the brute
+    // force has us touching at our fraction (FCL is free just before it).
+    const Eigen::Isometry3d X = motion.pose(first.fraction);
+    if (distanceToTouching(*fx.mdd, X, 1e-6) <= 10 * touchTolerance(*fx.mdd, X)) {
+      ++tally->fcl_late;
+      return;
+    }
+  }
   tally->worst_fraction_error = std::max(tally->worst_fraction_error, err);
   if (err > 1e-9) {
     ++tally->fraction_errors;

@@ -704,7 +704,6 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
     }
   };
   push(a.root(), b.root());
-  bool stopped = false;
   while (!heap.empty()) {
     std::pop_heap(heap.begin(), heap.end(), later);
     Entry e = heap.back();
@@ -713,7 +712,6 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
     // the best contact (or, with a tolerance, before it less stop_within).
     if (e.bound >= best - options.stop_within) {
       hit.lower_bound = std::min(best, e.bound);
-      stopped = true;
       break;
     }
     const Bvh::Node& A = a.node(e.a);
@@ -767,7 +765,7 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
       push(e.a, B.right);
     }
   }
-  if (!stopped) hit.lower_bound = hit.distance;
+  hit.lower_bound = std::min(hit.lower_bound, hit.distance);  // the distance itself unless stopped early
   if (stats) {
     stats->node_pairs += local.node_pairs;
     stats->leaf_pairs += local.leaf_pairs;

@@ -372,6 +372,11 @@ bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d&
   return castInterval(fixed, moving, u, max_s, slack, true, s_lo, s_hi);
 }
 
+bool obbCastIntervalFaces(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double slack,
+                          double* s_lo, double* s_hi) {
+  return castInterval(fixed, moving, u, max_s, slack, false, s_lo, s_hi);
+}
+
 bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
                     const Eigen::Vector3d& u, double max_s, double slack) {
   double lo = 0.0, hi = max_s;

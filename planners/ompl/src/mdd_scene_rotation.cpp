@@ -105,19 +105,40 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const double rho = std::min(n.max_norm, to_axis + n.radius);
     return I.half_angle * rho * (1.0 + kGrowthSafety) + kSlerpRoundoffRel * rho;
   };
+  // The robot node of the last triple bounded, posed over its interval: the
+  // triples of one split share it (a world node's two children, the four
+  // child pairs of a split of both), so it is computed once for them.
+  struct PosedRobot {
+    int rn = -1, iv = -1;
+    double e = 0.0;
+    Eigen::Vector3d c_W;
+    bool has_box = false;  ///< box_W is computed after the sphere test passes
+    Obb box_W;
+  } posed;
   // Lower bound of the first contact in the triple, +inf when it is cleared.
-  const auto bound = [&](int rn, int wn, const Interval& I) {
+  const auto bound = [&](int rn, int wn, int iv) {
     ++out->sub_edges;
+    const Interval& I = intervals[static_cast<std::size_t>(iv)];
     const Bvh::Node& N = robot_tree_.node(rn);
     const Bvh::Node& M = worldNode(wn);
-    const double e = growth(N, I);
-    const Eigen::Vector3d c_W = I.X_WM * N.centre;
+    if (posed.rn != rn || posed.iv != iv) {
+      posed.rn = rn;
+      posed.iv = iv;
+      posed.e = growth(N, I);
+      posed.c_W = I.X_WM * N.centre;
+      posed.has_box = false;
+    }
+    const double e = posed.e;
     const double r = N.radius + e;
-    const Obb box_W = N.obb.transformed(I.X_WM, e);
     const double slack = kBvhSlackRel * (M.scale + I.X_WM.translation().cwiseAbs().maxCoeff() + N.scale + e + I.length);
-    const double s = I.length > 0.0 ? std::clamp((M.centre - c_W).dot(I.u_W), 0.0, I.length) : 0.0;
+    const double s = I.length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(I.u_W), 0.0, I.length) : 0.0;
     const double reach = r + M.radius + slack;
-    if ((c_W + s * I.u_W - M.centre).squaredNorm() > reach * reach) return kInf;
+    if ((posed.c_W + s * I.u_W - M.centre).squaredNorm() > reach * reach) return kInf;
+    if (!posed.has_box) {
+      posed.box_W = N.obb.transformed(I.X_WM, e);
+      posed.has_box = true;
+    }
+    const Obb& box_W = posed.box_W;
     if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), I.u_W, I.length, slack)) return kInf;
     if (I.length == 0.0) return obbsDisjoint(M.obb, box_W, slack) ? kInf : I.ta;
     double lo = 0.0, hi = 0.0;
@@ -128,7 +149,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
     if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
-    const double b = bound(rn, wn, intervals[static_cast<std::size_t>(iv)]);
+    const double b = bound(rn, wn, iv);
     if (b < best) {
       heap.push_back(Triple{b, rn, wn, iv});
       if (first_contact) std::push_heap(heap.begin(), heap.end(), later);
@@ -212,7 +233,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       const double tm = 0.5 * (I.ta + I.tb);
       for (const int half : {makeInterval(tm, I.tb), makeInterval(I.ta, tm)}) {
         const Interval& H = intervals[static_cast<std::size_t>(half)];
-        if (!(bound(rn, wn, H) < kInf)) continue;
+        if (!(bound(rn, wn, half) < kInf)) continue;
         const LeafResult r = leafQuery(i, j, H, growth(robot_tree_.node(rn), H));
         if (!r.hit) continue;
         if (r.finest || trueContact(i, j, r.fraction)) {
@@ -257,14 +278,16 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       const double rm = M.isLeaf() ? -1.0 : M.radius;
       // Split the interval when e is large against both nodes; keep it
       // when e is small; in between, when the volumes without growth would
-      // clear the triple (the growth is to blame).
+      // clear the triple (the growth is to blame). That test is a heuristic
+      // (any split is sound): the 6 face axes, not all 15 (callgrind on the
+      // rotating edges of benchmarks/planning: 2% to 6% fewer instructions
+      // per check on bugtrap, twistycool, maze_planar and the cubicles).
       const double r = std::max(rn, rm);
       bool split_time = e > kTimeSplitAlways * r;
       if (!split_time && e > kTimeSplitNever * r) {
         const Obb box_W = N.obb.transformed(I.X_WM, 0.0);
         double lo = 0.0, hi = 0.0;
-        split_time =
-            I.length > 0.0 ? !obbCastInterval(M.obb, box_W, I.u_W, I.length, &lo, &hi) : obbsDisjoint(M.obb, box_W);
+        split_time = !obbCastIntervalFaces(M.obb, box_W, I.u_W, I.length, 0.0, &lo, &hi);
       }
       if (split_time) {
         splitTime(t, I);

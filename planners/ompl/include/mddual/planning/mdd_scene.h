@@ -134,7 +134,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <unordered_map>
 #include <vector>
 
 #include "mddual/bvh.h"
@@ -338,8 +337,17 @@ class MddScene {
   WarmStart* warmStart(int set, int robot_piece, int world_piece) const;
 
  private:
+  /// Warm starts by pair, direct-mapped: a pair's slot is a hash of its key,
+  /// and a pair that lands on another pair's slot takes it over with a fresh
+  /// warm start. No allocation per pair and a fixed size per thread and
+  /// scene (the unordered map it replaces grew to 2^17 pairs, then was
+  /// cleared); a lost warm start costs speed only, never an answer.
   struct WarmTable {
-    std::unordered_map<std::uint64_t, WarmStart> map;
+    struct Slot {
+      std::uint64_t key = ~std::uint64_t{0};  ///< no pair has this key
+      WarmStart warm;
+    };
+    std::vector<Slot> slots;  ///< 2^kWarmSlotBits entries, allocated on first use
   };
   /// The robot's pieces enlarged by one delta, each built on first use.
   struct EnlargedLevel {

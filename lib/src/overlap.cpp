@@ -16,6 +16,7 @@
 #include "overlap.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -132,6 +133,40 @@ OverlapTest portalOverlapTest(const PairGeometry& pair, const Eigen::Vector3d& v
       (v2.dot(c) > 0.0 ? v1 : v3) = v4;
     } else {
       (v3.dot(c) > 0.0 ? v2 : v1) = v4;
+    }
+  }
+  return out;
+}
+
+OverlapTest trianglesSeparated(const PairGeometry& pair, double tol) {
+  // In A's frame. For an axis L (any length), A's projection [lo_a, hi_a]
+  // and B's [lo_b, hi_b]; the gap along the unit axis is
+  // max(lo_b - hi_a, lo_a - hi_b) / |L|. Its round-off (a few 1e-16 of the
+  // pair's scale) is far below tol (1e-10 of it): a gap above 2 tol is a
+  // separation the exact test also sees.
+  const std::array<Eigen::Vector3d, 3> a = {pair.a().localVertex(0), pair.a().localVertex(1), pair.a().localVertex(2)};
+  const std::array<Eigen::Vector3d, 3> b = {pair.bVertex(0), pair.bVertex(1), pair.bVertex(2)};
+  const std::array<Eigen::Vector3d, 3> ea = {a[1] - a[0], a[2] - a[1], a[0] - a[2]};
+  const std::array<Eigen::Vector3d, 3> eb = {b[1] - b[0], b[2] - b[1], b[0] - b[2]};
+  const double threshold = 2.0 * tol;
+  OverlapTest out;
+  const auto separates = [&](const Eigen::Vector3d& L) {
+    const double la0 = L.dot(a[0]), la1 = L.dot(a[1]), la2 = L.dot(a[2]);
+    const double lb0 = L.dot(b[0]), lb1 = L.dot(b[1]), lb2 = L.dot(b[2]);
+    const double hi_a = std::max({la0, la1, la2}), lo_b = std::min({lb0, lb1, lb2});
+    const double lo_a = std::min({la0, la1, la2}), hi_b = std::max({lb0, lb1, lb2});
+    const double gap = std::max(lo_b - hi_a, lo_a - hi_b);
+    if (!(gap > 0.0)) return false;
+    const double norm = L.norm();
+    if (!(gap > threshold * norm)) return false;  // also false for a zero (degenerate) axis
+    out.kind = OverlapTest::Kind::kSeparated;
+    out.n_A = (lo_b - hi_a >= lo_a - hi_b ? L : Eigen::Vector3d(-L)) / norm;
+    return true;
+  };
+  if (separates(ea[0].cross(ea[1])) || separates(eb[0].cross(eb[1]))) return out;
+  for (const Eigen::Vector3d& e : ea) {
+    for (const Eigen::Vector3d& f : eb) {
+      if (separates(e.cross(f))) return out;
     }
   }
   return out;

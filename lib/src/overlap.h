@@ -31,4 +31,12 @@ struct OverlapTest {
 OverlapTest portalOverlapTest(const PairGeometry& pair, const Eigen::Vector3d& v0, double min_depth, WarmStart* warm,
                               SearchStats* stats);
 
+/// Two triangles (three vertices each): the separating-axis theorem on their
+/// two normals and nine edge-pair directions. kSeparated when an axis shows a
+/// gap larger than twice `tol` (so that the exact search, which calls gaps up
+/// to tol touching, would agree), with its unit direction from A toward B;
+/// kUnknown otherwise (overlap, touching, coplanar triangles, degenerate
+/// axes): the caller runs the exact test.
+OverlapTest trianglesSeparated(const PairGeometry& pair, double tol);
+
 }  // namespace mddual::detail

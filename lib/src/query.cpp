@@ -408,7 +408,14 @@ IntersectResult intersect(const IntersectInput& input, WarmStart* warm) {
       if (outside > tol) return separated(edge_normal);
       return overlapping(IntersectStatus::kTouching);
     }
-    // 4. The centre of duality is g itself (paper V: any interior point of M
+    // 4. Two triangles (the pieces of a mesh): the separating-axis test on
+    //    their 11 axes settles most separated pairs for a fraction of the
+    //    search's cost (the pairs a hierarchy reports whose boxes overlap).
+    if (pair.a().numVertices() == 3 && pair.b().numVertices() == 3) {
+      const detail::OverlapTest sat = detail::trianglesSeparated(pair, tol);
+      if (sat.kind == detail::OverlapTest::Kind::kSeparated) return separated(sat.n_A);
+    }
+    // 5. The centre of duality is g itself (paper V: any interior point of M
     //    other than the origin); g = 0 means the origin is interior. Before the
     //    search, three supports of M often settle it: a tetrahedron holding
     //    the origin deeper than tol proves penetration, a negative support
@@ -417,7 +424,7 @@ IntersectResult intersect(const IntersectInput& input, WarmStart* warm) {
     const detail::OverlapTest quick = detail::portalOverlapTest(pair, g, tol, warm, &r.stats);
     if (quick.kind == detail::OverlapTest::Kind::kSeparated) return separated(quick.n_A);
     if (quick.kind == detail::OverlapTest::Kind::kOverlap) return overlapping(IntersectStatus::kPenetrating);
-    // 5. Ray search from g through the origin, stopping at the first face of M
+    // 6. Ray search from g through the origin, stopping at the first face of M
     //    with offset h < -tol: its plane separates the origin from M.
     RayQuery q;
     q.c_A = g;
@@ -426,7 +433,7 @@ IntersectResult intersect(const IntersectInput& input, WarmStart* warm) {
     if (warm != nullptr) q.warm = warm->separating;
     const RayExit exit = detail::searchRay(pair, q, &r.stats);
     if (warm != nullptr) warm->separating = exit.face;
-    // 6. Result: the face's plane n . x = h separates when h < 0; the origin is
+    // 7. Result: the face's plane n . x = h separates when h < 0; the origin is
     //    on the boundary of M when the exit face passes within tol of it.
     if (exit.stopped) return separated(exit.n_A);
     if (exit.min_h <= tol) return overlapping(IntersectStatus::kTouching);

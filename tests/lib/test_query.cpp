@@ -259,6 +259,20 @@ TEST(Query, InvalidInputsThrowOurErrors) {
               toi(DirectionalInput{&c, at(0, 0, 0), &c, at(0, 0, 0), {1, 0, 0}, nan});
             }).find("max_distance"),
             std::string::npos);
+  // Validated poses are remembered by exact value only: a pose one rounding
+  // step from a valid one that was just used is still checked in full.
+  Eigen::Isometry3d turned = at(0.3, 0.1, 0.2);
+  turned.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  EXPECT_NO_THROW(intersect(IntersectInput{&c, at(0, 0, 0), &c, turned}));
+  Eigen::Isometry3d stretched = turned;
+  stretched.linear() *= 1.0 + 1e-6;
+  EXPECT_NE(message([&] {
+              intersect(IntersectInput{&c, at(0, 0, 0), &c, stretched});
+            }).find("X_WB"),
+            std::string::npos);
+  Eigen::Isometry3d poisoned = turned;
+  poisoned.linear()(1, 2) = nan;
+  EXPECT_NE(message([&] { intersect(IntersectInput{&c, at(0, 0, 0), &c, poisoned}); }).find("X_WB"), std::string::npos);
 }
 
 /// A coherent sequence: B slides past A while the direction turns.

@@ -16,6 +16,17 @@ double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::V
 /// most this fraction of the triangle's size when they are clamped to 0.
 constexpr double kFanWeightSlack = 1e-12;
 
+/// A fan triangle whose sine (twice its area over the product of its two
+/// sides at the fan's apex) is at most this is skipped: its barycentric
+/// weights are round-off noise. Dimensionless. The hull keeps points that
+/// round-off moves 1e-33 off a straight edge of M's face, and such a flat
+/// triangle took a point on that edge to the apex (QueryRegressions.
+/// ContactPointOnBothBodiesForBoxesTouchingAlongAnEdge: the contact point
+/// came out at a corner of A, 0.5 outside B). A point inside a skipped
+/// triangle lies within this fraction of the polygon's size of its edges,
+/// where the nearest-edge decomposition below takes it.
+constexpr double kFanMinSin = 1e-12;
+
 }  // namespace
 
 PlanarDifference::PlanarDifference(const std::vector<Eigen::Vector3d>& pa, const std::vector<Eigen::Vector3d>& pb,
@@ -147,7 +158,7 @@ Eigen::Vector3d PlanarDifference::pointOfA(const Eigen::Vector3d& x, double* out
     const Eigen::Vector2d& p1 = hull_[k].q;
     const Eigen::Vector2d& p2 = hull_[k + 1].q;
     const double area = cross2(p0, p1, p2);
-    if (!(area > 0.0)) continue;
+    if (!(area > kFanMinSin * (p1 - p0).norm() * (p2 - p0).norm())) continue;
     const double w1 = cross2(p0, x2, p2) / area;
     const double w2 = cross2(p0, p1, x2) / area;
     const Eigen::Vector3d w(1.0 - w1 - w2, w1, w2);

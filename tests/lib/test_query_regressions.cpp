@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "mddual/error.h"
+#include "mddual/generators.h"
 #include "query_oracle.h"
 
 namespace mddual::testing {
@@ -148,6 +149,34 @@ TEST(QueryRegressions, ContactPointOnBothBodiesForRoundedCoplanarFaces) {
       p.direction = s;
       check(p);
     }
+  }
+}
+
+TEST(QueryRegressions, ContactPointOnBothBodiesForBoxesTouchingAlongAnEdge) {
+  // QueryFamilies.ExactlyTouchingPlacements at MDDUAL_SWEEP_SCALE=5
+  // MDDUAL_SWEEP_SEED=6: boxes of half extents (1, 1, 2) and (2, 2, 1), B at
+  // (3, 3, 0.5) in A's frame, both turned by R: they touch along a vertical
+  // edge (x and y exactly touching), so the origin lies on the boundary of
+  // M's face. mdd was 0 (touching), the normal valid, but the contact point
+  // was a corner of A 0.5 outside B.
+  Eigen::Matrix3d R;
+  R << -0.0052340499641851945, 0.99993691029558196, -0.0099388203272739728,  //
+      0.99997589243118146, 0.0051883867196734768, -0.0046146722212574275,    //
+      -0.0045628146395557505, -0.0099627341514533542, -0.99993996052302725;
+  const ConvexPolytope a = ConvexPolytope::fromPoints(generators::box({1, 1, 2}));
+  const ConvexPolytope b = ConvexPolytope::fromPoints(generators::box({2, 2, 1}));
+  Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
+  X_WA.linear() = R;
+  Eigen::Isometry3d X_WB = X_WA;
+  X_WB.translation() = R * Eigen::Vector3d(3, 3, 0.5);
+  const std::vector<Eigen::Vector3d> directions{{-1.0145805009859448, -1.0143936235933699, -1.9853543722550453},
+                                                {-1.0046416806586707, -1.0097789513721125, -0.98541441173201816},
+                                                {-1.9847009502997048, -1.005737993649271, 1.0244282434654897}};
+  QueryOracle oracle;
+  Tally tally;
+  EXPECT_EQ(oracle.check(a, X_WA, b, X_WB, directions, &tally), 0);
+  for (const Eigen::Vector3d& s : directions) {
+    EXPECT_EQ(mdd(DirectionalInput{&a, X_WA, &b, X_WB, s}).status, ContactStatus::kTouching);
   }
 }
 

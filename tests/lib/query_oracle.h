@@ -62,6 +62,29 @@ inline double worldRoundoff(const ConvexPolytope& a, const Eigen::Isometry3d& X_
   return 16.0 * std::numeric_limits<double>::epsilon() * magnitude;
 }
 
+/// The body-frame points and both poses, to full precision: a failure can
+/// depend on the frames' round-off, which the world points of toJsonLine
+/// lose (a repro from them may pass).
+inline std::string describeFrames(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
+                                  const Eigen::Isometry3d& X_WB) {
+  std::ostringstream o;
+  o.precision(17);
+  const auto body = [&](const char* name, const ConvexPolytope& p, const Eigen::Isometry3d& X) {
+    o << "\n  " << name << " body points:";
+    for (int v = 0; v < p.numVertices(); ++v) {
+      o << (v > 0 ? ", " : " ") << "{" << p.vertex(v).x() << ", " << p.vertex(v).y() << ", " << p.vertex(v).z() << "}";
+    }
+    o << "\n  X_W" << name << " rows (R | p):";
+    for (int r = 0; r < 3; ++r) {
+      o << (r > 0 ? "; " : " ") << X.matrix()(r, 0) << ", " << X.matrix()(r, 1) << ", " << X.matrix()(r, 2) << " | "
+        << X.matrix()(r, 3);
+    }
+  };
+  body("A", a, X_WA);
+  body("B", b, X_WB);
+  return o.str();
+}
+
 class QueryOracle {
  public:
   /// rel_tol: agreement required, relative to the pair's length scale.
@@ -95,7 +118,7 @@ class QueryOracle {
         ++failures;
         ADD_FAILURE() << "intersect: fast " << toString(fast.status) << " vs brute " << toString(ref.status)
                       << "\n  query: " << toJsonLine(DirectionalInput{&a, X_WA, &b, X_WB, Eigen::Vector3d::UnitX()})
-                      << frames(a, X_WA, b, X_WB);
+                      << describeFrames(a, X_WA, b, X_WB);
       }
     }
     for (const Eigen::Vector3d& s : directions) {
@@ -123,37 +146,13 @@ class QueryOracle {
         ADD_FAILURE() << why.str() << "\n  fast: " << describe(fast) << "\n  brute: " << describe(ref)
                       << "\n  toi fast " << toString(fast_toi.status) << " " << fast_toi.toi << ", brute "
                       << toString(ref_toi.status) << " " << ref_toi.toi << "\n  query: " << toJsonLine(in)
-                      << frames(a, X_WA, b, X_WB);
+                      << describeFrames(a, X_WA, b, X_WB);
       }
     }
     return failures;
   }
 
  private:
-  /// The body-frame points and both poses, to full precision: a failure can
-  /// depend on the frames' round-off, which the world points of toJsonLine
-  /// lose (a repro from them may pass).
-  static std::string frames(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
-                            const Eigen::Isometry3d& X_WB) {
-    std::ostringstream o;
-    o.precision(17);
-    const auto body = [&](const char* name, const ConvexPolytope& p, const Eigen::Isometry3d& X) {
-      o << "\n  " << name << " body points:";
-      for (int v = 0; v < p.numVertices(); ++v) {
-        o << (v > 0 ? ", " : " ") << "{" << p.vertex(v).x() << ", " << p.vertex(v).y() << ", " << p.vertex(v).z()
-          << "}";
-      }
-      o << "\n  X_W" << name << " rows (R | p):";
-      for (int r = 0; r < 3; ++r) {
-        o << (r > 0 ? "; " : " ") << X.matrix()(r, 0) << ", " << X.matrix()(r, 1) << ", " << X.matrix()(r, 2) << " | "
-          << X.matrix()(r, 3);
-      }
-    };
-    body("A", a, X_WA);
-    body("B", b, X_WB);
-    return o.str();
-  }
-
   static std::string describe(const MddResult& r) {
     std::ostringstream o;
     o.precision(17);

@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <random>
-#include <string>
 
 #include "mddual/brute_force.h"
 #include "mddual/generators.h"
 #include "mddual/query.h"
 #include "overlap.h"
 #include "pair.h"
+#include "query_oracle.h"
 
 namespace mddual {
 namespace {
@@ -33,35 +33,6 @@ Eigen::Isometry3d randomPose(Rng& rng, double r) {
   X.linear() = generators::randomRotation(rng);
   X.translation() = randomPoint(rng, r);
   return X;
-}
-
-/// Prints a query so that it can be pasted into a regression test.
-std::string describe(const Points& a, const Eigen::Isometry3d& X_WA, const Points& b, const Eigen::Isometry3d& X_WB) {
-  std::string out;
-  char buf[128];
-  const auto points = [&](const char* name, const Points& p) {
-    out += name;
-    for (const Eigen::Vector3d& v : p) {
-      std::snprintf(buf, sizeof buf, " {%.17g, %.17g, %.17g}", v.x(), v.y(), v.z());
-      out += buf;
-    }
-    out += "\n";
-  };
-  const auto pose = [&](const char* name, const Eigen::Isometry3d& X) {
-    out += name;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) {
-        std::snprintf(buf, sizeof buf, " %.17g", X.matrix()(r, c));
-        out += buf;
-      }
-    }
-    out += "\n";
-  };
-  points("A:", a);
-  pose("X_WA:", X_WA);
-  points("B:", b);
-  pose("X_WB:", X_WB);
-  return out;
 }
 
 TEST(Overlap, TrianglesSeparatedOnlyWhereTheBruteForceSeparates) {
@@ -91,7 +62,7 @@ TEST(Overlap, TrianglesSeparatedOnlyWhereTheBruteForceSeparates) {
     const detail::OverlapTest sat = detail::trianglesSeparated(pair, pair.touchTolerance());
     if (sat.kind == detail::OverlapTest::Kind::kSeparated) {
       ++certified;
-      EXPECT_FALSE(reference.intersecting) << describe(ta, X_WA, tb, X_WB);
+      EXPECT_FALSE(reference.intersecting) << testing::describeFrames(a, X_WA, b, X_WB);
       // The certificate is a proof: A below and B above the plane along n.
       const Eigen::Vector3d n_W = pair.vectorToWorld(sat.n_A);
       double hi_a = -1e300, lo_b = 1e300;
@@ -99,10 +70,10 @@ TEST(Overlap, TrianglesSeparatedOnlyWhereTheBruteForceSeparates) {
         hi_a = std::max(hi_a, n_W.dot(X_WA * a.vertex(v)));
         lo_b = std::min(lo_b, n_W.dot(X_WB * b.vertex(v)));
       }
-      EXPECT_GT(lo_b - hi_a, pair.touchTolerance()) << describe(ta, X_WA, tb, X_WB);
+      EXPECT_GT(lo_b - hi_a, pair.touchTolerance()) << testing::describeFrames(a, X_WA, b, X_WB);
     }
     const IntersectResult r = intersect(in);
-    EXPECT_EQ(r.intersecting, reference.intersecting) << describe(ta, X_WA, tb, X_WB);
+    EXPECT_EQ(r.intersecting, reference.intersecting) << testing::describeFrames(a, X_WA, b, X_WB);
     if (!reference.intersecting) ++separated;
     if (reference.status == IntersectStatus::kPenetrating) ++overlapping;
     if (reference.status == IntersectStatus::kTouching) ++touching;

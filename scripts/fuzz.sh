@@ -18,7 +18,10 @@ cd "$(dirname "$0")/.."
 # at ~35 executions/s, the others at 150 to 400.
 declare -A default_runs=([polytope]=10000 [cfg]=10000 [urdf]=10000 [mesh]=2000 [jsonl]=8000)
 jobs="${MDDUAL_JOBS:-$(nproc)}"
-CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_BUILD_FUZZERS=ON \
+# -O1 and line tables only, as the sanitizer builds of scripts/test.sh (and
+# the -O1 that libFuzzer's documentation builds with).
+CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DMDDUAL_BUILD_FUZZERS=ON \
   -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF >/dev/null
 cmake --build build/fuzz -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl
 

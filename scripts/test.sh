@@ -16,10 +16,17 @@ cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DMDDUAL_WARNINGS_AS_ERRO
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"
 
+# The instrumented builds (sanitizers here, fuzzers in scripts/fuzz.sh) use
+# -O1 and line tables only (-g1: file and line in every report, no variable
+# info). Against -O2 -g on the 2-core machine: the ASan + UBSan build 306 s
+# -> 163 s with its tests as fast (62 s), the TSan build 177 s -> 133 s.
+san_flags="-O1 -g1 -DNDEBUG"
+
 echo "== core tests under address + undefined sanitizers"
 # Core only: the planning layer is not needed for the core tests (its
 # concurrency test has its own ThreadSanitizer build below).
-cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE=address,undefined \
+cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
+  -DMDDUAL_SANITIZE=address,undefined \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=OFF -DMDDUAL_BUILD_PYTHON=OFF \
   -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/sanitize -j "$jobs"
@@ -27,7 +34,8 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   ctest --test-dir build/sanitize -L core --output-on-failure -j "$jobs"
 
 echo "== the OMPL layer's concurrency test under ThreadSanitizer"
-cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMDDUAL_SANITIZE=thread \
+cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
+  -DMDDUAL_SANITIZE=thread \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/tsan -j "$jobs" --target test_planning_threads
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/tsan -L tsan --output-on-failure

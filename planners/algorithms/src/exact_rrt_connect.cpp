@@ -189,7 +189,11 @@ ob::PlannerStatus ExactRRTConnect::solve(const ob::PlannerTerminationCondition& 
     Motion* added = nullptr;
     if (extend(tree, sample, &added) != Extend::kTrapped) {
       Motion* joined = nullptr;
-      if (extend(other, added->state, &joined) == Extend::kReached) {
+      // CONNECT: extend the other tree toward the new node until it reaches
+      // it or is trapped (one edge when the range is unlimited).
+      Extend connect = Extend::kAdvanced;
+      while (connect == Extend::kAdvanced && !ptc) connect = extend(other, added->state, &joined);
+      if (connect == Extend::kReached) {
         Motion* from_start = start_side ? added : joined;
         Motion* from_goal = start_side ? joined : added;
         // 3. The path: start root ... from_start, then from_goal's ancestors

@@ -109,6 +109,42 @@ TEST(ExactRRTConnect, RangeLimitsExtensions) {
   EXPECT_LE(longer, 1);
 }
 
+TEST(ExactRRTConnect, ConnectStepsByRangeUntilItReachesTheNewNode) {
+  // No obstacle, range 0.5, start and goal 8 apart: the first EXTEND adds one
+  // node to the start tree, and CONNECT then steps the goal tree toward it by
+  // the range until it reaches it, so the first iteration solves: the start
+  // tree holds two states and the path has at most 2 + ceil(8.5 / 0.5) of
+  // them, every edge no longer than the range. (A CONNECT of one step would
+  // need about 16 iterations, growing the start tree at each.)
+  ompl::RNG::setSeed(5);
+  auto space = std::make_shared<ob::RealVectorStateSpace>(2);
+  space->setBounds(0.0, 10.0);
+  og::SimpleSetup ss(space);
+  ss.setStateValidityChecker([](const ob::State*) { return true; });
+  ob::ScopedState<> start(space), goal(space);
+  start[0] = 1.0;
+  start[1] = 1.0;
+  goal[0] = 9.0;
+  goal[1] = 1.0;
+  ss.setStartAndGoalStates(start, goal);
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  constexpr double kRange = 0.5;
+  planner->setRange(kRange);
+  ss.setPlanner(planner);
+  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ob::PlannerData data(ss.getSpaceInformation());
+  planner->getPlannerData(data);
+  int start_tree = 0;
+  for (unsigned i = 0; i < data.numVertices(); ++i) start_tree += data.getVertex(i).getTag() == 1;
+  EXPECT_EQ(start_tree, 2);
+  const og::PathGeometric& path = ss.getSolutionPath();
+  // The new node is within the range of the start, so within 8 + 0.5 of the goal.
+  EXPECT_LE(path.getStateCount(), 2u + static_cast<unsigned>(std::ceil(8.5 / kRange)));
+  for (unsigned i = 0; i + 1 < path.getStateCount(); ++i) {
+    EXPECT_LE(ss.getSpaceInformation()->distance(path.getState(i), path.getState(i + 1)), kRange + 1e-9) << i;
+  }
+}
+
 /// SE(2): a rod of half length 0.6 centred at the state, along its heading,
 /// in [0,10]^2 with the wall and gap of makeSetup(): free when 25 points of
 /// the rod are (the test's own check, also used densely on the path).

@@ -8,7 +8,9 @@
 // range" of RRT-Connect only adds checks; going straight to the first contact
 // makes every extension as long as the free space allows, and CONNECT
 // finishes in a single call (it either reaches the other tree or stops at the
-// obstacle). It works with any motion validator that fills lastValid (OMPL's
+// obstacle). With a range set, CONNECT repeats its step toward the new node
+// until it reaches it or is trapped, as OMPL's RRT-Connect does. It works
+// with any motion validator that fills lastValid (OMPL's
 // DiscreteMotionValidator does, at its resolution), which is how it runs in
 // the benchmark beside OMPL's planners with every checker.
 //

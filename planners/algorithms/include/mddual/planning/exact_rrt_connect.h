@@ -6,11 +6,12 @@
 // Why: with MDD-DUAL's motion validator an edge of any length costs one exact
 // time-of-impact query per nearby pair of pieces, so the classic "step by
 // range" of RRT-Connect only adds checks; going straight to the first contact
-// makes every extension as long as the free space allows, and CONNECT
-// finishes in a single call (it either reaches the other tree or stops at the
-// obstacle). With a range set, CONNECT repeats its step toward the new node
-// until it reaches it or is trapped, as OMPL's RRT-Connect does. It works
-// with any motion validator that fills lastValid (OMPL's
+// makes every extension as long as the free space allows. CONNECT repeats
+// its extension toward the new node while the other tree advances (a free
+// step of the range, or a blocked edge kept up to lastValid, at least
+// min_progress long) and stops when it reaches the node or adds nothing; with
+// a range set, that is the CONNECT loop of OMPL's RRT-Connect. It works with
+// any motion validator that fills lastValid (OMPL's
 // DiscreteMotionValidator does, at its resolution), which is how it runs in
 // the benchmark beside OMPL's planners with every checker.
 //

@@ -31,6 +31,12 @@ class TempDir {
 std::string readFile(const std::string& path);
 /// The lines of `text` (without the newlines; a final newline ends the last line).
 std::vector<std::string> splitLines(const std::string& text);
+/// The number of newline characters in `text`.
+inline int countLines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n' ? 1 : 0;
+  return n;
+}
 
 struct CliRun {
   int exit_code = -1;  ///< the process's exit status, or -1 if it did not exit normally

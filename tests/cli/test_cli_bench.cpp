@@ -54,12 +54,6 @@ std::set<std::string> runKeys(const fs::path& db) {
   return {rows.begin(), rows.end()};
 }
 
-int countLines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n' ? 1 : 0;
-  return n;
-}
-
 TEST(CliBench, EndToEnd) {
   TempDir dir;
   const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()) / "cfg");

@@ -20,12 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int countLines(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n' ? 1 : 0;
-  return n;
-}
-
 /// The tiny cfg in `dir` with one line replaced.
 fs::path tinyConfigWith(const fs::path& dir, const std::string& from, const std::string& to) {
   const fs::path cfg = testing::writeTinyConfig(dir);

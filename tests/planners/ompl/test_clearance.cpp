@@ -17,7 +17,7 @@ namespace {
 
 namespace ob = ompl::base;
 using testing::Fixture;
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing::kInf;
 
 /// Brute-force reference of directedClearance(): every pair whose bounding
 /// spheres can meet along the line, toi (free start) or mdd (colliding pairs).
@@ -113,10 +113,7 @@ TEST_P(Clearance, MatchesTheBruteForce) {
   EXPECT_GT(hits, n / 10);
 }
 
-std::string sceneName(const ::testing::TestParamInfo<int>& p) {
-  return testing::sceneName(p.param);
-}
-INSTANTIATE_TEST_SUITE_P(Scenes, Clearance, ::testing::Values(0, 1, 2, 3), sceneName);
+INSTANTIATE_TEST_SUITE_P(Scenes, Clearance, ::testing::Values(0, 1, 2, 3), testing::sceneParamName);
 
 TEST(Clearance, PenetrationDepthOfAnOverlap) {
   // A unit cube sunk 0.3 into a slab (top at z = 0): straight up it must

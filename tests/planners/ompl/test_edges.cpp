@@ -16,9 +16,9 @@
 namespace mddual::planning {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using testing::kInf;
+using testing::kNaN;
+using testing::kPi;
 /// Round-off allowed on exact fractions and poses (relative to scene sizes of ~10).
 constexpr double kExactTol = 1e-9;
 
@@ -47,10 +47,7 @@ Eigen::Isometry3d poseAt(const Eigen::Vector3d& p, double yaw = 0.0) {
   return X;
 }
 
-double poseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return std::max((a.linear() - b.linear()).cwiseAbs().maxCoeff(),
-                  (a.translation() - b.translation()).cwiseAbs().maxCoeff());
-}
+using testing::poseError;
 
 TEST(Edges, TranslationEdgeEqualsTheHandBuiltMotion) {
   const Eigen::Isometry3d X = poseAt(Eigen::Vector3d(1, 2, 3), 0.7);

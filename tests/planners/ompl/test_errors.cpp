@@ -16,8 +16,8 @@ namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing::kInf;
+using testing::kNaN;
 
 /// Runs f, expects InvalidInputError with `needle` in its message.
 template <typename F>
@@ -30,7 +30,7 @@ void expectError(F&& f, const std::string& needle) {
   }
 }
 
-const Eigen::AlignedBox3d kBounds(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
+const Eigen::AlignedBox3d kUnitBounds(Eigen::Vector3d(-1, -1, -1), Eigen::Vector3d(1, 1, 1));
 
 TEST(Errors, PlanningSpace) {
   expectError([] { PlanningSpace::se3(Eigen::AlignedBox3d()); }, "bounds");  // empty box
@@ -40,13 +40,13 @@ TEST(Errors, PlanningSpace) {
               "not finite");
   // SE(2)/R(2) ignore z's bounds.
   EXPECT_NO_THROW(PlanningSpace::se2(Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 0))));
-  expectError([] { PlanningSpace::r3(kBounds, Eigen::Quaterniond(0, 0, 0, 0)); }, "fixed orientation");
-  expectError([] { PlanningSpace::r2(kBounds, kNaN); }, "fixed z");
+  expectError([] { PlanningSpace::r3(kUnitBounds, Eigen::Quaterniond(0, 0, 0, 0)); }, "fixed orientation");
+  expectError([] { PlanningSpace::r2(kUnitBounds, kNaN); }, "fixed z");
 }
 
 TEST(Errors, SetPose) {
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  const PlanningSpacePtr se2 = PlanningSpace::se2(kBounds);
+  const PlanningSpacePtr se2 = PlanningSpace::se2(kUnitBounds);
   ob::ScopedState<> s(se2->stateSpace());
   X.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitX()).toRotationMatrix();
   expectError([&] { se2->setPose(X, s.get()); }, "rotates about +z");
@@ -59,11 +59,11 @@ TEST(Errors, SetPose) {
   X.linear() = 2.0 * Eigen::Matrix3d::Identity();
   expectError([&] { se2->setPose(X, s.get()); }, "not a rotation");
 
-  const PlanningSpacePtr r3 = PlanningSpace::r3(kBounds);
+  const PlanningSpacePtr r3 = PlanningSpace::r3(kUnitBounds);
   ob::ScopedState<> t(r3->stateSpace());
   X.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   expectError([&] { r3->setPose(X, t.get()); }, "fixed orientation");
-  const PlanningSpacePtr r2 = PlanningSpace::r2(kBounds, 0.5);
+  const PlanningSpacePtr r2 = PlanningSpace::r2(kUnitBounds, 0.5);
   ob::ScopedState<> u(r2->stateSpace());
   X.linear().setIdentity();
   expectError([&] { r2->setPose(X, u.get()); }, "z = 0.5");

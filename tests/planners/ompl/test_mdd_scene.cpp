@@ -19,8 +19,8 @@
 namespace mddual::planning {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
+using testing::kInf;
+using testing::kPi;
 
 /// The old state check: every robot piece of `set` against the world pieces
 /// whose boxes meet its box at X_WR.
@@ -126,10 +126,7 @@ TEST_P(PairLoop, StatesAndSweepsAnswerAsTheLoopOverCandidatePairs) {
   EXPECT_GT(hits, 0);
 }
 
-std::string sceneName(const ::testing::TestParamInfo<int>& p) {
-  return testing::sceneName(p.param);
-}
-INSTANTIATE_TEST_SUITE_P(Scenes, PairLoop, ::testing::Range(0, testing::kSceneCount), sceneName);
+INSTANTIATE_TEST_SUITE_P(Scenes, PairLoop, ::testing::Range(0, testing::kSceneCount), testing::sceneParamName);
 
 // ---- Rotating edges -----------------------------------------------------------------
 
@@ -504,7 +501,7 @@ TEST_P(WorldUpdates, EveryAnswerEqualsThatOfAWorldRebuiltFromScratch) {
   EXPECT_GT(stats.rotating_hits, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(CodeScenes, WorldUpdates, ::testing::Range(0, 4), sceneName);
+INSTANTIATE_TEST_SUITE_P(CodeScenes, WorldUpdates, ::testing::Range(0, 4), testing::sceneParamName);
 
 TEST(WorldUpdates, OtherPairsKeepTheirWarmStarts) {
   const examples::ExampleScene& scene = testing::allScenes()[3];  // blobs

@@ -20,7 +20,7 @@ namespace {
 namespace ob = ompl::base;
 using testing::EdgeTally;
 using testing::Fixture;
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 class MotionSoundness : public ::testing::TestWithParam<int> {};
 
@@ -61,10 +61,7 @@ TEST_P(MotionSoundness, NoMissesAndExactTranslationContacts) {
   }
 }
 
-std::string sceneName(const ::testing::TestParamInfo<int>& p) {
-  return testing::sceneName(p.param);
-}
-INSTANTIATE_TEST_SUITE_P(Scenes, MotionSoundness, ::testing::Range(0, testing::kSceneCount), sceneName);
+INSTANTIATE_TEST_SUITE_P(Scenes, MotionSoundness, ::testing::Range(0, testing::kSceneCount), testing::sceneParamName);
 
 // The dense check skips ahead by half FCL's distance over the largest point
 // speed: sound when half FCL's distance never exceeds the true distance.

@@ -166,8 +166,7 @@ TEST_P(SceneDistanceAgreement, ClearanceMatchesFclOnRandomStates) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SceneDistanceAgreement,
-                         ::testing::Range(0, static_cast<int>(testing::allScenes().size())),
-                         [](const ::testing::TestParamInfo<int>& p) { return testing::sceneName(p.param); });
+                         ::testing::Range(0, static_cast<int>(testing::allScenes().size())), testing::sceneParamName);
 
 TEST(SceneDistance, CollidingStatesHaveNonPositiveClearanceAndDeeperIsLower) {
   // The robot placed on a world piece's centre overlaps it; the clearance is

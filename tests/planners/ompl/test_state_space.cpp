@@ -21,15 +21,12 @@ namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 using testing::Rng;
 
 const Eigen::AlignedBox3d kBounds(Eigen::Vector3d(-5, -4, -3), Eigen::Vector3d(5, 4, 3));
 
-double poseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
-  return std::max((a.linear() - b.linear()).cwiseAbs().maxCoeff(),
-                  (a.translation() - b.translation()).cwiseAbs().maxCoeff());
-}
+using testing::poseError;
 
 class AllKinds : public ::testing::TestWithParam<SpaceKind> {};
 

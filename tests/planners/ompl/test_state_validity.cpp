@@ -84,10 +84,7 @@ TEST_P(StateAgreement, MddAndFclAgreeOnRandomStates) {
   EXPECT_EQ(fx.mdd_checker->counts().state_checks, static_cast<std::uint64_t>(n + t.out_of_bounds));
 }
 
-std::string sceneName(const ::testing::TestParamInfo<int>& p) {
-  return testing::sceneName(p.param);
-}
-INSTANTIATE_TEST_SUITE_P(Scenes, StateAgreement, ::testing::Range(0, testing::kSceneCount), sceneName);
+INSTANTIATE_TEST_SUITE_P(Scenes, StateAgreement, ::testing::Range(0, testing::kSceneCount), testing::sceneParamName);
 
 TEST(StateValidity, TouchingCountsAsCollision) {
   // A unit cube robot resting exactly on a slab: invalid; lifted by 1e-6: valid.

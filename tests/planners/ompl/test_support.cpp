@@ -27,8 +27,6 @@ namespace mddual::planning::testing {
 namespace {
 
 namespace ob = ompl::base;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 /// checkEdge's dense FCL check: the sample step, as a fraction of the edge.
 constexpr double kDenseEdgeStep = 1e-4;
 

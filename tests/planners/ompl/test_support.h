@@ -9,9 +9,14 @@
 // runs k = 1), MDDUAL_PLANNING_SEED=n changes the seed of scenes and samples.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/SpaceInformation.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -24,6 +29,10 @@
 namespace mddual::planning::testing {
 
 using Rng = std::mt19937_64;
+
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kPi = 3.14159265358979323846;
 
 /// MDDUAL_PLANNING_SCALE (default 1).
 int scale();
@@ -73,6 +82,15 @@ inline bool isFileScene(int index) {
 }
 /// Test name of allScenes()[index].
 std::string sceneName(int index);
+/// The instance name of a test parameterized by scene index (INSTANTIATE_TEST_SUITE_P).
+inline std::string sceneParamName(const ::testing::TestParamInfo<int>& p) {
+  return sceneName(p.param);
+}
+/// Largest difference between the entries of two poses (rotation and translation).
+inline double poseError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return std::max((a.linear() - b.linear()).cwiseAbs().maxCoeff(),
+                  (a.translation() - b.translation()).cwiseAbs().maxCoeff());
+}
 
 /// A uniformly random state of the space (position in bounds; yaw in (-pi,
 /// pi]; uniform rotation).

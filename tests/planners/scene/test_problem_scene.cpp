@@ -16,7 +16,7 @@ using testing::boxTriangles;
 using testing::expectSceneError;
 using testing::TempDir;
 
-void expectBox(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+void expectSceneBox(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   EXPECT_LE((box.min() - lo).cwiseAbs().maxCoeff(), 1e-9) << box.min().transpose() << " vs " << lo.transpose();
   EXPECT_LE((box.max() - hi).cwiseAbs().maxCoeff(), 1e-9) << box.max().transpose() << " vs " << hi.transpose();
 }
@@ -33,7 +33,7 @@ void writeAssets(const TempDir& dir) {
   </link></robot>)");
 }
 
-const char* kPlanar = R"([problem]
+const char* kPlanarProblem = R"([problem]
 robot = assets/robot.stl
 world = assets/world.urdf
 start.x = 0.5
@@ -47,14 +47,14 @@ goal.theta = 0.5
 TEST(ProblemScene, PlanarMeshRobotIsRecentredInXYOnly) {
   TempDir dir;
   writeAssets(dir);
-  const ProblemConfig c = readProblemConfig(dir.write("planar.cfg", kPlanar));
+  const ProblemConfig c = readProblemConfig(dir.write("planar.cfg", kPlanarProblem));
   const ProblemScene s = loadProblemScene(c);
   EXPECT_EQ(s.space, SpaceKind::kSE2);
   EXPECT_TRUE(s.robot_shift.isApprox(Eigen::Vector3d(3, 2, 0)));
-  expectBox(s.robot.box(), {-1, -1, 1}, {1, 1, 2});  // z not shifted (OMPL.app zeroes the centre's z in 2D)
-  expectBox(s.world.box(), {-5, -5, 0}, {5, 5, 1});
+  expectSceneBox(s.robot.box(), {-1, -1, 1}, {1, 1, 2});  // z not shifted (OMPL.app zeroes the centre's z in 2D)
+  expectSceneBox(s.world.box(), {-5, -5, 0}, {5, 5, 1});
   // No volume: the world's box widened to hold start and goal; z = [0, 0].
-  expectBox(s.bounds, {-5, -5, 0}, {40, 5, 0});
+  expectSceneBox(s.bounds, {-5, -5, 0}, {40, 5, 0});
   EXPECT_TRUE(s.start.translation().isApprox(Eigen::Vector3d(0.5, -1.25, 0)));
   EXPECT_TRUE(s.start.linear().isApprox(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix()));
   EXPECT_TRUE(s.goal.translation().isApprox(Eigen::Vector3d(40, 3.5, 0)));
@@ -63,11 +63,12 @@ TEST(ProblemScene, PlanarMeshRobotIsRecentredInXYOnly) {
 TEST(ProblemScene, TranslationOnlyPlanar) {
   TempDir dir;
   writeAssets(dir);
-  const ProblemConfig c = readProblemConfig(dir.write("t.cfg", std::string(kPlanar) + "translation_only = on\n"));
+  const ProblemConfig c =
+      readProblemConfig(dir.write("t.cfg", std::string(kPlanarProblem) + "translation_only = on\n"));
   const ProblemScene s = loadProblemScene(c);
   EXPECT_EQ(s.space, SpaceKind::kR2);
   EXPECT_TRUE(s.goal.linear().isApprox(s.start.linear()));
-  expectBox(s.bounds, {-5, -5, 0}, {40, 5, 0});
+  expectSceneBox(s.bounds, {-5, -5, 0}, {40, 5, 0});
 }
 
 TEST(ProblemScene, SpatialMeshRobotIsRecentredOnItsMeanVertex) {
@@ -95,9 +96,9 @@ translation_only = true
   const ProblemScene s = loadProblemScene(readProblemConfig(cfg));
   EXPECT_EQ(s.space, SpaceKind::kR3);
   EXPECT_TRUE(s.robot_shift.isApprox(Eigen::Vector3d(3, 2, 1.5)));
-  expectBox(s.robot.box(), {-1, -1, -0.5}, {1, 1, 0.5});
-  expectBox(s.world.box(), {2, 1, 1}, {4, 3, 2});  // the world is not shifted
-  expectBox(s.bounds, {-1, -2, 1}, {4, 3, 30});
+  expectSceneBox(s.robot.box(), {-1, -1, -0.5}, {1, 1, 0.5});
+  expectSceneBox(s.world.box(), {2, 1, 1}, {4, 3, 2});  // the world is not shifted
+  expectSceneBox(s.bounds, {-1, -2, 1}, {4, 3, 30});
   EXPECT_TRUE(s.start.linear().isApprox(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitY()).toRotationMatrix()));
 }
 
@@ -120,8 +121,8 @@ volume.max.y = 10
 )");
   const ProblemScene s = loadProblemScene(readProblemConfig(cfg));
   EXPECT_TRUE(s.robot_shift.isZero());
-  expectBox(s.robot.box(), {-0.5, -0.5, 0}, {0.5, 0.5, 2});
-  expectBox(s.bounds, {-20, -10, 0}, {20, 10, 0});
+  expectSceneBox(s.robot.box(), {-0.5, -0.5, 0}, {0.5, 0.5, 2});
+  expectSceneBox(s.bounds, {-20, -10, 0}, {20, 10, 0});
   EXPECT_EQ(s.robot.name(), "arm");
 }
 
@@ -184,7 +185,7 @@ TEST(ProblemScene, MeshConvexToleranceFromTheCfg) {
     if (p == Eigen::Vector3d(1, 0, 1)) p.z() += 10.0 * kDefaultMeshConvexTolerance * std::sqrt(3.0);
   }
   dir.write("assets/rock.stl", asciiStl(tri));
-  std::string text = kPlanar;
+  std::string text = kPlanarProblem;
   text.replace(text.find("assets/world.urdf"), 17, "assets/rock.stl");
   const ProblemScene soup = loadProblemScene(readProblemConfig(dir.write("soup.cfg", text)));
   EXPECT_EQ(soup.world.pieces().size(), 12u);
@@ -215,7 +216,7 @@ TEST(ProblemScene, MeshConvexToleranceFromTheCfg) {
   loose.mesh_convex_tolerance = 1e-2;
   EXPECT_EQ(loadProblemScene(readProblemConfig(dir.path() / "soup.cfg"), loose).world.pieces().size(), 1u);
   // A URDF world counts its primitives as pieces, not meshes.
-  const ProblemScene plain = loadProblemScene(readProblemConfig(dir.write("plain.cfg", kPlanar)));
+  const ProblemScene plain = loadProblemScene(readProblemConfig(dir.write("plain.cfg", kPlanarProblem)));
   EXPECT_EQ(sceneSummary(plain),
             "robot 'robot': 1 piece (1 convex), 1 mesh (1 convex); world 'floor': 1 piece (1 convex)");
 }
@@ -223,7 +224,7 @@ TEST(ProblemScene, MeshConvexToleranceFromTheCfg) {
 TEST(ProblemSceneErrors, TranslationOnlyConfigBuiltInCodeWithARotatedGoal) {
   TempDir dir;
   writeAssets(dir);
-  ProblemConfig c = readProblemConfig(dir.write("t.cfg", std::string(kPlanar) + "translation_only = true\n"));
+  ProblemConfig c = readProblemConfig(dir.write("t.cfg", std::string(kPlanarProblem) + "translation_only = true\n"));
   c.goal.theta = 1.0;
   expectSceneError([&] { loadProblemScene(c); }, {"t.cfg: translation_only", "rotation differs"});
 }
@@ -231,7 +232,7 @@ TEST(ProblemSceneErrors, TranslationOnlyConfigBuiltInCodeWithARotatedGoal) {
 TEST(ProblemSceneErrors, MissingRobotNamesTheCfgAndTheFile) {
   TempDir dir;
   writeAssets(dir);
-  std::string text = kPlanar;
+  std::string text = kPlanarProblem;
   text.replace(text.find("assets/robot.stl"), 16, "assets/car.stl");
   const ProblemConfig c = readProblemConfig(dir.write("scene.cfg", text));
   expectSceneError([&] { loadProblemScene(c); }, {"scene.cfg: ", "car.stl", "file not found"});
@@ -241,7 +242,7 @@ TEST(ProblemSceneErrors, MalformedWorldNamesTheCfgAndTheFile) {
   TempDir dir;
   writeAssets(dir);
   dir.write("assets/world.urdf", "<robot name='w'>");
-  const ProblemConfig c = readProblemConfig(dir.write("scene.cfg", kPlanar));
+  const ProblemConfig c = readProblemConfig(dir.write("scene.cfg", kPlanarProblem));
   expectSceneError([&] { loadProblemScene(c); }, {"scene.cfg: ", "world.urdf", "not a valid URDF"});
 }
 

@@ -47,7 +47,7 @@ using testing::EdgeTally;
 using testing::Fixture;
 
 const fs::path kConfigs = MDDUAL_CONFIGS_DIR;
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 
 // ---- The sample (lengths in robot radii r, the robot's bounding radius) ----
 /// A config and its sample sizes at scale 1 (the whole test, five configs:

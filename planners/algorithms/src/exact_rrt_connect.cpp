@@ -189,8 +189,9 @@ ob::PlannerStatus ExactRRTConnect::solve(const ob::PlannerTerminationCondition& 
     Motion* added = nullptr;
     if (extend(tree, sample, &added) != Extend::kTrapped) {
       Motion* joined = nullptr;
-      // CONNECT: extend the other tree toward the new node until it reaches
-      // it or is trapped (one edge when the range is unlimited).
+      // CONNECT: extend the other tree toward the new node while it advances
+      // (a free step, or a blocked edge kept up to lastValid; see the header)
+      // until it reaches the node or adds nothing.
       Extend connect = Extend::kAdvanced;
       while (connect == Extend::kAdvanced && !ptc) connect = extend(other, added->state, &joined);
       if (connect == Extend::kReached) {

@@ -29,7 +29,7 @@ namespace {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using testing::kInf;
 
 /// Planner iterations allowed (a count, not a time: the same plan on any machine).
 constexpr int kMaxPlannerIterations = 200000;

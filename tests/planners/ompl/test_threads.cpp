@@ -26,7 +26,7 @@ namespace {
 
 namespace ob = ompl::base;
 using testing::Fixture;
-constexpr double kPi = 3.14159265358979323846;
+using testing::kPi;
 constexpr int kThreads = 8;
 
 struct Answers {

@@ -46,7 +46,7 @@ void runDistance(const DistanceOptions& options) {
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 
-constexpr const char* kDescription =
+constexpr const char* kDistanceDescription =
     "Separation distance of point-set hulls read as JSON Lines, one pair per line:\n"
     "  {\"id\": any, \"a\": [[x,y,z], ...], \"b\": [[x,y,z], ...]}\n"
     "Each line gets one output line:\n"
@@ -64,7 +64,7 @@ constexpr const char* kDescription =
 void registerDistanceCommand(CLI::App& app) {
   auto options = std::make_shared<DistanceOptions>();
   CLI::App* sub = app.add_subcommand("distance", "exact separation distance of convex polytopes for JSON Lines");
-  sub->footer(kDescription);
+  sub->footer(kDistanceDescription);
   sub->add_option("--input", options->input, "read pairs from FILE (default or -: standard input)")
       ->option_text("FILE");
   sub->add_option("--output", options->output, "write answers to FILE (default or -: standard output)")

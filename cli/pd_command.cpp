@@ -92,7 +92,7 @@ void runPd(const PdOptions& options) {
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 
-constexpr const char* kDescription =
+constexpr const char* kPdDescription =
     "Penetration depth of pairs read as JSON Lines, one per line (the input of `mddual query`;\n"
     "a \"direction\" field is ignored):\n"
     "  {\"id\": any, \"a\": [[x,y,z], ...], \"b\": [[x,y,z], ...], \"metric\": [[x,y,z], ...] (optional)}\n"
@@ -114,7 +114,7 @@ constexpr const char* kDescription =
 void registerPdCommand(CLI::App& app) {
   auto options = std::make_shared<PdOptions>();
   CLI::App* sub = app.add_subcommand("pd", "penetration depth (exact, shallow, approximate) for JSON Lines pairs");
-  sub->footer(kDescription);
+  sub->footer(kPdDescription);
   sub->add_option("--method", options->method,
                   "exact: every facet of M that matters (default); shallow: approximation + search near it; "
                   "approx: (1 + delta)-approximation by ray shots; brute: explicit Minkowski difference")

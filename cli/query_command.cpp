@@ -60,7 +60,7 @@ void runQuery(const QueryOptions& options) {
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 
-constexpr const char* kDescription =
+constexpr const char* kQueryDescription =
     "Answer directional queries read as JSON Lines, one per line:\n"
     "  {\"id\": any, \"a\": [[x,y,z], ...], \"b\": [[x,y,z], ...], \"direction\": [x,y,z]}\n"
     "A and B are the convex hulls of the point sets (A fixed, B moving along the direction,\n"
@@ -75,7 +75,7 @@ constexpr const char* kDescription =
 void registerQueryCommand(CLI::App& app) {
   auto options = std::make_shared<QueryOptions>();
   CLI::App* sub = app.add_subcommand("query", "MDD, time of impact and intersection for JSON Lines queries");
-  sub->footer(kDescription);
+  sub->footer(kQueryDescription);
   sub->add_option("--method", options->method, "dual: MDD-DUAL (default); brute: explicit Minkowski difference")
       ->check(CLI::IsMember({"dual", "brute"}))
       ->capture_default_str();

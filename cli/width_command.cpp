@@ -51,7 +51,7 @@ void runWidth(const WidthOptions& options) {
   if (summary.failed > 0) throw CLI::RuntimeError(1);
 }
 
-constexpr const char* kDescription =
+constexpr const char* kWidthDescription =
     "Width of polytopes read as JSON Lines, one per line:\n"
     "  {\"id\": any, \"a\": [[x,y,z], ...]}\n"
     "The width of the convex hull of the points is the smallest distance between two parallel\n"
@@ -68,7 +68,7 @@ constexpr const char* kDescription =
 void registerWidthCommand(CLI::App& app) {
   auto options = std::make_shared<WidthOptions>();
   CLI::App* sub = app.add_subcommand("width", "width of convex polytopes (exact or approximate) for JSON Lines");
-  sub->footer(kDescription);
+  sub->footer(kWidthDescription);
   sub->add_option("--method", options->method,
                   "exact: every facet of A - A (default); approx: (1 + delta)-approximation by ray shots; "
                   "brute: explicit A - A")

@@ -13,15 +13,18 @@
 #include <cmath>
 #include <map>
 
+#include "constants.h"
 #include "mddual/defaults.h"
 #include "mddual/error.h"
 #include "pair.h"
 
 namespace mddual {
-namespace {
+// Named, not anonymous: BruteForce::Line (a class with linkage) holds a
+// ClippedLine.
+namespace brute_force_detail {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kInf;
+using detail::kNaN;
 
 /// A half-space n . x <= h bounding M, with the vertices of M on its boundary.
 struct Constraint {
@@ -115,7 +118,16 @@ Eigen::Vector3d decompose(const MinkowskiDifference& md, const std::vector<Eigen
   return best;
 }
 
-}  // namespace
+}  // namespace brute_force_detail
+// The rest of this file uses its helpers by name (a using-declaration, not a
+// using-directive: the library is built as one translation unit).
+using brute_force_detail::clip;
+using brute_force_detail::ClippedLine;
+using brute_force_detail::Constraint;
+using brute_force_detail::constraintsOf;
+using brute_force_detail::decompose;
+using detail::kInf;
+using detail::kNaN;
 
 MinkowskiDifference MinkowskiDifference::build(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA,
                                                const ConvexPolytope& b, const Eigen::Isometry3d& X_WB) {

@@ -10,13 +10,14 @@
 #include <numeric>
 #include <string>
 
+#include "constants.h"
 #include "mddual/error.h"
 #include "mddual/query.h"
 
 namespace mddual {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 
 /// Volumes are grown by this fraction of their coordinates' magnitude so that
 /// round-off in fitting them never leaves a point (or a child's volume)

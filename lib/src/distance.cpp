@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "constants.h"
 #include "mddual/defaults.h"
 #include "mddual/penetration.h"
 #include "pair.h"
@@ -27,7 +28,7 @@ const char* toString(DistanceStatus status) {
 namespace detail {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 
 /// A point of M - o (o: the query point) with its vertices of A and B.
 struct SimplexPoint {

@@ -74,10 +74,6 @@ double pseudoAngle(double c, double s) {
   return s >= 0.0 ? 1.0 - p : 3.0 + p;
 }
 
-int otherFace(const ConvexPolytope::Edge& e, int f) {
-  return e.face_left == f ? e.face_right : e.face_left;
-}
-
 /// A candidate of the branch and bound: a facet of A (FV), of B (VF), or an
 /// arc of A (its EE facets), with a lower bound on its offset.
 struct Item {
@@ -318,7 +314,7 @@ PdPlane ExactEnumerator::branchAndBound() {
           region[static_cast<size_t>(edge.face_left)] >= 0 || region[static_cast<size_t>(edge.face_right)] < 0
               ? edge.face_left
               : edge.face_right;
-      const int to = otherFace(edge, from);
+      const int to = edge.otherFace(from);
       const int end = walkArc(it.index, from, regionOf(from));
       if (region[static_cast<size_t>(to)] < 0) region[static_cast<size_t>(to)] = end;
     }
@@ -344,7 +340,7 @@ void ExactEnumerator::facetVertexAndEdgeEdge() {
     for (int e : a_.faceEdges(f)) {
       if (walked[static_cast<size_t>(e)] != 0) continue;
       walked[static_cast<size_t>(e)] = 1;
-      const int g = otherFace(a_.edge(e), f);
+      const int g = a_.edge(e).otherFace(f);
       const int end_region = walkArc(e, f, region[static_cast<size_t>(f)]);
       if (region[static_cast<size_t>(g)] < 0) {
         region[static_cast<size_t>(g)] = end_region;
@@ -434,7 +430,7 @@ int ExactEnumerator::walkArcByTesting(int e, int from_face, int vb_hint) {
     ++stats_->ee_facets;
     offer(FaceOfM::Kind::kEE, e, j, n, n.dot(a0 - bA(eb.v0)), ea.v0, eb.v0);
   }
-  return supportMinusB(a_.faceNormal(otherFace(ea, from_face)), vb_hint);
+  return supportMinusB(a_.faceNormal(ea.otherFace(from_face)), vb_hint);
 }
 
 void ExactEnumerator::vertexFacet() {
@@ -456,7 +452,7 @@ void ExactEnumerator::vertexFacet() {
     const int v = va[static_cast<size_t>(g)];
     offerVF(g, v);
     for (int e : b_.faceEdges(g)) {
-      const int h = otherFace(b_.edge(e), g);
+      const int h = b_.edge(e).otherFace(g);
       if (va[static_cast<size_t>(h)] >= 0) continue;
       va[static_cast<size_t>(h)] = a_.supportVertexHillClimb(-pair_.bToA(b_.faceNormal(h)), v, &climb);
       queue.push_back(h);

@@ -14,10 +14,6 @@
 namespace mddual::detail {
 namespace {
 
-int otherFace(const ConvexPolytope::Edge& e, int f) {
-  return e.face_left == f ? e.face_right : e.face_left;
-}
-
 void addEdgesOf(const ConvexPolytope& p, const int* first, const int* last, std::vector<int>* edges) {
   edges->clear();
   for (const int* v = first; v != last; ++v) {
@@ -186,11 +182,11 @@ void FacetGraph::neighbours(const Node& node, std::vector<Ref>* out) {
     // borders the FV facets at e_a, the VF facets at e_b, and the EE facets
     // sharing e_a (with an edge at an end of e_b) or e_b.
     if (p.face.kind == FaceOfM::Kind::kFV) {
-      for (int e : a.faceEdges(p.face.a)) fv(otherFace(a.edge(e), p.face.a));
+      for (int e : a.faceEdges(p.face.a)) fv(a.edge(e).otherFace(p.face.a));
       for (int e : a.faceEdges(p.face.a))
         for (int eb : b.vertexEdges(vb)) ee(e, eb);
     } else if (p.face.kind == FaceOfM::Kind::kVF) {
-      for (int e : b.faceEdges(p.face.b)) vf(otherFace(b.edge(e), p.face.b));
+      for (int e : b.faceEdges(p.face.b)) vf(b.edge(e).otherFace(p.face.b));
       for (int e : b.faceEdges(p.face.b))
         for (int ea : a.vertexEdges(va)) ee(ea, e);
     } else {

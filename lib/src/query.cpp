@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "centre.h"
+#include "constants.h"
 #include "mddual/error.h"
 #include "overlap.h"
 #include "pair.h"
@@ -62,8 +63,8 @@ using detail::PlanarSlice;
 using detail::RayExit;
 using detail::RayQuery;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
+using detail::kNaN;
 
 /// The line's interval in M with a contact at each end that was computed.
 struct LineInterval {

@@ -34,6 +34,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "constants.h"
 #include "key_set.h"
 #include "mddual/defaults.h"
 #include "mddual/error.h"
@@ -41,13 +42,6 @@
 
 namespace mddual::detail {
 namespace {
-
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// The face across edge e from face f.
-int otherFace(const ConvexPolytope::Edge& e, int f) {
-  return e.face_left == f ? e.face_right : e.face_left;
-}
 
 std::uint64_t keyOf(FaceOfM::Kind kind, int a, int b) {
   return (static_cast<std::uint64_t>(kind) << 62) | (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 31) |
@@ -316,7 +310,7 @@ Candidate Searcher::searchFV(Candidate current) {
   for (;;) {
     Candidate best = current;
     for (int e : a_.faceEdges(current.face.a)) {
-      const int f = otherFace(a_.edge(e), current.face.a);
+      const int f = a_.edge(e).otherFace(current.face.a);
       if (!s_.visited.insert(keyOf(FaceOfM::Kind::kFV, f, 0))) continue;
       Candidate c;
       if (evalFV(f, current.vb, best, &c) && take(c, Phase::kFV, &best)) return best;
@@ -339,7 +333,7 @@ Candidate Searcher::searchVF(const Candidate& fv) {
   for (;;) {
     Candidate best = current;
     for (int e : b_.faceEdges(current.face.b)) {
-      const int f = otherFace(b_.edge(e), current.face.b);
+      const int f = b_.edge(e).otherFace(current.face.b);
       if (!s_.visited.insert(keyOf(FaceOfM::Kind::kVF, 0, f))) continue;
       Candidate c;
       if (evalVF(f, current.va, best, &c) && take(c, Phase::kVF, &best)) return best;
@@ -407,7 +401,7 @@ bool Searcher::edgeNeighbours(const Candidate& current, Candidate* best) {
   const FaceOfM& face = current.face;
   if (face.kind == FaceOfM::Kind::kFV) {
     for (int e : a_.faceEdges(face.a))
-      if (fv(otherFace(a_.edge(e), face.a))) return true;
+      if (fv(a_.edge(e).otherFace(face.a))) return true;
     s_.ties_b.assign({current.vb});
     collectEdges(s_.ties_b, true, &s_.edges_b);
     for (int e : a_.faceEdges(face.a)) {
@@ -417,7 +411,7 @@ bool Searcher::edgeNeighbours(const Candidate& current, Candidate* best) {
     }
   } else if (face.kind == FaceOfM::Kind::kVF) {
     for (int e : b_.faceEdges(face.b))
-      if (vf(otherFace(b_.edge(e), face.b))) return true;
+      if (vf(b_.edge(e).otherFace(face.b))) return true;
     s_.ties_a.assign({current.va});
     collectEdges(s_.ties_a, false, &s_.edges_a);
     for (int e : b_.faceEdges(face.b)) {

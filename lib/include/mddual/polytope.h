@@ -77,6 +77,8 @@ class ConvexPolytope {
     Eigen::Vector3d dir_P = Eigen::Vector3d::Zero();
     Eigen::Vector3d wedge_left_P = Eigen::Vector3d::Zero();
     Eigen::Vector3d wedge_right_P = Eigen::Vector3d::Zero();
+    /// The face across this edge from face f (one of its two faces).
+    int otherFace(int f) const { return face_left == f ? face_right : face_left; }
   };
 
   /// Builds the convex hull of points_P (frame P). Throws InvalidInputError

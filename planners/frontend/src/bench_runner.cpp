@@ -42,10 +42,6 @@ int parseInt(const std::string& text, const std::string& what) {
   return std::stoi(text);
 }
 
-std::string cfgName(const Problem& problem) {
-  return problem.config.file.empty() ? problem.name + ".cfg" : problem.config.file.filename().string();
-}
-
 /// Runs a planner and calls `solved` the moment its solve() returns, before
 /// OMPL's benchmark checks the solution path: the checkers' counters are read
 /// there. Everything else is the wrapped planner's: name, parameters (the
@@ -207,12 +203,12 @@ std::string logFileName(const std::string& config, CheckerKind checker, const Be
 }
 
 std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std::vector<std::string>& names) {
-  return selectPlannerSpecs(problem.config.planners, names, cfgName(problem));
+  return selectPlannerSpecs(problem.config.planners, names, problem.cfgName());
 }
 
 void checkBenchProblem(const Problem& problem) {
   if (problem.name.size() > kMaxProblemNameBytes) {
-    throw InvalidInputError(cfgName(problem) + ": the problem name '" + clipForMessage(problem.name) +
+    throw InvalidInputError(problem.cfgName() + ": the problem name '" + clipForMessage(problem.name) +
                             "' is too long: it names the experiment and the log files; at most " +
                             std::to_string(kMaxProblemNameBytes) + " bytes");
   }
@@ -225,7 +221,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
   const int runs = options.runs.value_or(cfg.run_count);
   if (options.runs && runs < 1) throw InvalidInputError("--runs must be at least 1 (got " + std::to_string(runs) + ")");
   if (runs < 1) {
-    throw InvalidInputError(cfgName(problem) + ": run_count = " + std::to_string(runs) +
+    throw InvalidInputError(problem.cfgName() + ": run_count = " + std::to_string(runs) +
                             " (as many runs as fit in the time limit) is not supported: give the number of runs");
   }
   const double time_limit = options.time_limit.value_or(cfg.time_limit);

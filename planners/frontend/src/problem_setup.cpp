@@ -143,10 +143,6 @@ class TimedMotionValidator : public ob::MotionValidator {
   mutable std::mutex mutex_;
 };
 
-std::string cfgName(const Problem& problem) {
-  return problem.config.file.empty() ? problem.name + ".cfg" : problem.config.file.filename().string();
-}
-
 std::string sanitize(const std::string& name) {
   std::string out = name;
   for (char& c : out) {
@@ -208,6 +204,10 @@ std::set<std::string> ourPlannerNames() {
 
 // ---- Problem ------------------------------------------------------------------------
 
+std::string Problem::cfgName() const {
+  return config.file.empty() ? name + ".cfg" : config.file.filename().string();
+}
+
 std::shared_ptr<const scene::RigidBody> Problem::robot() const {
   return {scene, &scene->robot};
 }
@@ -249,7 +249,7 @@ std::string number(double x) {
 /// One state of checkStartAndGoal: `which` is "start" or "goal".
 void checkState(const Problem& problem, const std::string& which, const Eigen::Isometry3d& X_WR) {
   const scene::ProblemScene& sc = *problem.scene;
-  const std::string where = cfgName(problem) + ": the " + which + " state";
+  const std::string where = problem.cfgName() + ": the " + which + " state";
   const Eigen::Vector3d p_WR = X_WR.translation();
   const bool planar = sc.space == scene::SpaceKind::kSE2 || sc.space == scene::SpaceKind::kR2;
   const char* const axes[] = {"x", "y", "z"};
@@ -318,7 +318,7 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
   if (!problem_.scene) throw InvalidInputError("ProblemSetup: the problem has no scene");
   const scene::ProblemScene& sc = *problem_.scene;
   const scene::ProblemConfig& cfg = problem_.config;
-  const std::string where = cfgName(problem_);
+  const std::string where = problem_.cfgName();
 
   // 1. The state space.
   const SpaceKind kind = toPlanningKind(sc.space);
@@ -482,12 +482,12 @@ void ProblemSetup::applyParameters(const std::vector<std::pair<std::string, std:
 void ProblemSetup::applyPlannerContext(const scene::PlannerSpec& spec) {
   const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
   for (const auto& [key, value] : baseline_) si->params().setParam(key, value);
-  setSampler(baseline_sampler_, cfgName(problem_) + ": [problem] ");
-  applyParameters(spec.context, cfgName(problem_) + ":" + std::to_string(spec.line) + ": problem.");
+  setSampler(baseline_sampler_, problem_.cfgName() + ": [problem] ");
+  applyParameters(spec.context, problem_.cfgName() + ":" + std::to_string(spec.line) + ": problem.");
 }
 
 ob::PlannerPtr ProblemSetup::makePlanner(const scene::PlannerSpec& spec) const {
-  const std::string at = cfgName(problem_) + ":" + std::to_string(spec.line) + ": ";
+  const std::string at = problem_.cfgName() + ":" + std::to_string(spec.line) + ": ";
   ob::PlannerPtr planner;
   try {
     planner = planning::makePlanner(spec.name, ss_->getSpaceInformation(), spec.params);

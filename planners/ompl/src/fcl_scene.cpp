@@ -10,24 +10,30 @@
 #include <cmath>
 #include <vector>
 
+#include "constants.h"
 #include "mddual/error.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/per_thread.h"
 
 namespace mddual::planning {
+namespace detail {
+
+/// A collision object whose AABB the caller sets: the broad-phase query for a
+/// swept volume. In a named namespace: FclScene::Impl (a class with linkage)
+/// holds one.
+class BoxQuery : public fcl::CollisionObject<double> {
+ public:
+  using fcl::CollisionObject<double>::CollisionObject;
+  void setAabb(const fcl::AABB<double>& box) { aabb = box; }
+};
+
+}  // namespace detail
 namespace {
 
 using Geometry = fcl::CollisionGeometry<double>;
 using Object = fcl::CollisionObject<double>;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// A collision object whose AABB the caller sets: the broad-phase query for a
-/// swept volume.
-class BoxQuery : public Object {
- public:
-  using Object::Object;
-  void setAabb(const fcl::AABB<double>& box) { aabb = box; }
-};
+using detail::BoxQuery;
+using detail::kInf;
 
 /// The triangle soup of the kTriangle pieces (nullptr when there are none).
 std::shared_ptr<Geometry> triangleSoup(const std::vector<scene::Piece>& pieces) {
@@ -190,7 +196,7 @@ struct FclScene::Impl {
   /// soups for continuous collision (see privateCopy).
   struct Local {
     std::vector<std::unique_ptr<Object>> robot;
-    std::unique_ptr<BoxQuery> query;
+    std::unique_ptr<detail::BoxQuery> query;
     std::vector<std::shared_ptr<Geometry>> robot_ccd;
     std::vector<std::shared_ptr<Geometry>> world_ccd;
     /// The same as meshes (asMesh), when the scene mixes shapes and meshes.

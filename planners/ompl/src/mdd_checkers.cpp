@@ -6,6 +6,7 @@
 #include <string>
 
 #include "checker_arguments.h"
+#include "constants.h"
 #include "mddual/error.h"
 #include "mddual/planning/scene_distance.h"
 
@@ -14,7 +15,7 @@ namespace {
 
 namespace ob = ompl::base;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 /// lastValid back-off: first step and growth (fractions of the edge).
 constexpr double kFirstBackoff = 1e-9;
 constexpr double kBackoffGrowth = 10.0;

@@ -5,12 +5,13 @@
 #include <cmath>
 #include <string>
 
+#include "constants.h"
 #include "mddual/error.h"
 
 namespace mddual::planning {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 /// Slots of a warm-start table (per thread and scene): 2^15 slots of 88
 /// bytes, 2.9 MB. Measured against the unordered map (benchmarks/planning,
 /// --mdd-only, mesh configs): the same speed within 7%.

@@ -5,12 +5,13 @@
 #include <cmath>
 #include <vector>
 
+#include "constants.h"
 #include "mddual/planning/mdd_scene.h"
 
 namespace mddual::planning {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 /// e(N, I) is computed times (1 + kGrowthSafety), plus kSlerpRoundoffRel *
 /// rho(N): OMPL's slerp between states whose quaternion norms are within 1e-9
 /// of 1 differs from EdgeMotion's rotation by about that much (see the header).

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <utility>
 #include <vector>
+#include "constants.h"
 
 namespace mddual::planning {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 /// Bounding spheres are computed in floating point: their radii are inflated
 /// by this relative amount before a gap between them is trusted as a lower
 /// bound on a pair's distance (dimensionless; far above round-off).

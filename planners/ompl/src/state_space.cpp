@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "constants.h"
 #include "mddual/error.h"
 
 namespace mddual::planning {
@@ -19,7 +20,7 @@ namespace {
 
 namespace ob = ompl::base;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 constexpr double kPi = 3.14159265358979323846;
 /// OMPL's MAX_QUATERNION_NORM_ERROR (SO3StateSpace.cpp): below 1 - this, the
 /// slerp of SO3StateSpace::interpolate is replaced by a copy of the start.

@@ -93,6 +93,9 @@ struct Problem {
 
   std::shared_ptr<const scene::RigidBody> robot() const;
   std::shared_ptr<const scene::World> world() const;
+  /// The cfg's file name as messages name it (name + ".cfg" when the
+  /// problem was made in code).
+  std::string cfgName() const;
 };
 
 /// Reads a cfg (readProblemConfig, with our planner names) and loads its

@@ -9,15 +9,17 @@
 # plus every past finding in fuzz/findings (named <target>-<what>).
 # MDDUAL_FUZZ_RUNS sets the executions of every target (default: per target,
 # below, about 25 to 60 s each on a 2-core machine); -seed=1 makes a run
-# repeatable. A crash,
-# a sanitizer report or a wrong answer stops the script with the input saved
-# as build/fuzz/crash-* (turn it into a regression test).
+# repeatable. The targets run side by side (MDDUAL_JOBS at a time, default
+# all cores); a crash, a sanitizer report or a wrong answer in one fails the
+# script once all have finished, with the input saved as build/fuzz/crash-*
+# (turn it into a regression test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Executions per target (about 25 to 60 s each here): the mesh loader runs
 # at ~35 executions/s, the others at 150 to 400.
 declare -A default_runs=([polytope]=10000 [cfg]=10000 [urdf]=10000 [mesh]=2000 [jsonl]=8000)
 jobs="${MDDUAL_JOBS:-$(nproc)}"
+[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: MDDUAL_JOBS must be a positive integer (got '$jobs')"; exit 1; }
 declare -A pids
 # -O1 and line tables only, as the sanitizer builds of scripts/test.sh (and
 # the -O1 that libFuzzer's documentation builds with).
@@ -51,10 +53,12 @@ done < <(find configs -path '*meshes*' -type f -print0)
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
-# One target per core at a time (each libFuzzer run is single-threaded; one
-# after another they took 115 s on the 2-core machine, mesh 42, polytope 30,
-# jsonl 28, urdf 10, cfg 5), longest first; each target's summary is printed
-# in this order once all have run, and any finding fails the script then.
+# $jobs targets at a time (each libFuzzer run is single-threaded; one after
+# another they took 115 s on the 2-core machine, mesh 42, polytope 30, jsonl
+# 28, urdf 10, cfg 5; two at a time 58 s), longest first; the summaries are
+# printed in this order, and any finding fails the script after all have run.
+# (The background jobs share the script's process group: an interrupt from
+# the terminal reaches the fuzzers too.)
 run_target() {
   local target=$1 runs start
   runs="${MDDUAL_FUZZ_RUNS:-${default_runs[$target]}}"
@@ -69,7 +73,7 @@ run_target() {
   grep -E "^Done [0-9]+ runs" "build/fuzz/fuzz_$target.log" || true
   echo "fuzz_$target: $runs executions in $(($(date +%s) - start)) s, no finding"
 }
-targets=(mesh jsonl polytope urdf cfg)
+targets=(mesh polytope jsonl urdf cfg)
 for target in "${targets[@]}"; do
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
   run_target "$target" >"build/fuzz/fuzz_$target.summary" 2>&1 &

@@ -19,12 +19,9 @@
 #include "pair.h"
 
 namespace mddual {
-// Named, not anonymous: BruteForce::Line (a class with linkage) holds a
-// ClippedLine.
+// The two types BruteForce::Line (a class with linkage) holds are in a named
+// namespace; the functions stay file-local.
 namespace brute_force_detail {
-
-using detail::kInf;
-using detail::kNaN;
 
 /// A half-space n . x <= h bounding M, with the vertices of M on its boundary.
 struct Constraint {
@@ -32,6 +29,24 @@ struct Constraint {
   double h = 0.0;
   std::vector<int> vertices;  // a face loop, or an edge's two ends (flat M)
 };
+
+struct ClippedLine {
+  bool hit = false;
+  bool grazing = false;  // the line lies in a supporting plane of M
+  double t_lo = -detail::kInf;
+  double t_hi = detail::kInf;
+  const Constraint* lo = nullptr;
+  const Constraint* hi = nullptr;
+};
+
+}  // namespace brute_force_detail
+
+namespace {
+
+using brute_force_detail::ClippedLine;
+using brute_force_detail::Constraint;
+using detail::kInf;
+using detail::kNaN;
 
 std::vector<Constraint> constraintsOf(const ConvexPolytope& m) {
   std::vector<Constraint> out;
@@ -48,15 +63,6 @@ std::vector<Constraint> constraintsOf(const ConvexPolytope& m) {
   }
   return out;
 }
-
-struct ClippedLine {
-  bool hit = false;
-  bool grazing = false;  // the line lies in a supporting plane of M
-  double t_lo = -kInf;
-  double t_hi = kInf;
-  const Constraint* lo = nullptr;
-  const Constraint* hi = nullptr;
-};
 
 ClippedLine clip(const std::vector<Constraint>& constraints, const Eigen::Vector3d& u, double tol) {
   ClippedLine out;
@@ -118,16 +124,7 @@ Eigen::Vector3d decompose(const MinkowskiDifference& md, const std::vector<Eigen
   return best;
 }
 
-}  // namespace brute_force_detail
-// The rest of this file uses its helpers by name (a using-declaration, not a
-// using-directive: the library is built as one translation unit).
-using brute_force_detail::clip;
-using brute_force_detail::ClippedLine;
-using brute_force_detail::Constraint;
-using brute_force_detail::constraintsOf;
-using brute_force_detail::decompose;
-using detail::kInf;
-using detail::kNaN;
+}  // namespace
 
 MinkowskiDifference MinkowskiDifference::build(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA,
                                                const ConvexPolytope& b, const Eigen::Isometry3d& X_WB) {

@@ -3,12 +3,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "constants.h"
 #include "mddual/error.h"
 
 namespace mddual::generators {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 /// Ring of k points on the ellipse (a cos t, b sin t) at height z.
 void ellipseRing(int k, double a, double b, double z, double phase, Points* out) {

@@ -85,7 +85,7 @@ struct Item {
 /// Per-thread buffers of the enumeration, reused across queries so that a
 /// query allocates nothing once the buffers have grown (resize() of a
 /// vector that is already large enough neither allocates nor initialises).
-struct Scratch {
+struct PenetrationScratch {
   std::vector<Eigen::Vector3d> b_A;
   std::vector<char> ready;
   std::vector<Eigen::Vector3d> edge_A;
@@ -96,8 +96,8 @@ struct Scratch {
   std::vector<Item> items;
 };
 
-Scratch& scratch() {
-  thread_local Scratch s;
+PenetrationScratch& penetrationScratch() {
+  thread_local PenetrationScratch s;
   return s;
 }
 
@@ -108,7 +108,7 @@ class ExactEnumerator {
         a_(pair.a()),
         b_(pair.b()),
         stats_(stats),
-        s_(scratch()),
+        s_(penetrationScratch()),
         b_A_(s_.b_A),
         ready_(s_.ready),
         edge_A_(s_.edge_A),
@@ -178,7 +178,7 @@ class ExactEnumerator {
   const ConvexPolytope& a_;
   const ConvexPolytope& b_;
   PenetrationStats* stats_;
-  Scratch& s_;
+  PenetrationScratch& s_;
   std::vector<Eigen::Vector3d>& b_A_;     ///< B's vertices in A's frame (where ready_)
   std::vector<char>& ready_;              ///< per vertex of B: b_A_ and its edges computed
   const int* nbr_base_ = nullptr;         ///< start of B's adjacency array

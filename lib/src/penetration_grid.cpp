@@ -35,6 +35,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "constants.h"
 #include "mddual/defaults.h"
 #include "mddual/error.h"
 #include "penetration_internal.h"
@@ -42,7 +43,7 @@
 namespace mddual {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 
 /// Largest angle between the centre (phi, 0) of a cell and its corners
 /// (phi +- half_polar, half_azimuth).

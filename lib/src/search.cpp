@@ -60,7 +60,7 @@ struct EdgeInA {
 };
 
 /// Per-thread scratch memory, so that a query does not allocate once warm.
-struct Scratch {
+struct SearchScratch {
   KeySet visited{64};  ///< faces of M visited (paper VI-D: a hash table of visited faces)
   std::vector<int> ties_a;
   std::vector<int> ties_b;
@@ -68,8 +68,8 @@ struct Scratch {
   std::vector<EdgeInA> edges_b;
 };
 
-Scratch& scratch() {
-  thread_local Scratch s;
+SearchScratch& searchScratch() {
+  thread_local SearchScratch s;
   return s;
 }
 
@@ -93,7 +93,7 @@ struct Candidate {
 class Searcher {
  public:
   Searcher(const PairGeometry& pair, const RayQuery& query, SearchStats* stats)
-      : pair_(pair), a_(pair.a()), b_(pair.b()), q_(query), stats_(stats), s_(scratch()) {
+      : pair_(pair), a_(pair.a()), b_(pair.b()), q_(query), stats_(stats), s_(searchScratch()) {
     s_.visited.clear();
   }
 
@@ -136,7 +136,7 @@ class Searcher {
   const ConvexPolytope& b_;
   const RayQuery& q_;
   SearchStats* stats_;
-  Scratch& s_;
+  SearchScratch& s_;
   bool stopped_ = false;
   Candidate stop_face_;
   int steps_ = 0;
@@ -586,8 +586,8 @@ Eigen::Vector3d contactPointOnA(const PairGeometry& pair, const RayExit& exit, c
   // a partial tie set gives a smaller polygon that may miss x (the point
   // returned was then off one of the bodies by a good part of their size).
   // So the tolerance grows until the polygon holds x.
-  std::vector<int>& ties_a = scratch().ties_a;
-  std::vector<int>& ties_b = scratch().ties_b;
+  std::vector<int>& ties_a = searchScratch().ties_a;
+  std::vector<int>& ties_b = searchScratch().ties_b;
   const double tol = pair.touchTolerance();
   const double max_delta = defaults::kContactTieMaxRel * pair.scale();
   std::vector<Eigen::Vector3d> pa;

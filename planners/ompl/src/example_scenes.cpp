@@ -5,14 +5,15 @@
 #include <cmath>
 #include <random>
 
+#include "constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 
 namespace mddual::planning::examples {
 namespace {
 
+using detail::kPi;
 using generators::Rng;
-constexpr double kPi = 3.14159265358979323846;
 
 double uniform(Rng& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);

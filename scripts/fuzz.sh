@@ -21,10 +21,10 @@ declare -A default_runs=([polytope]=10000 [cfg]=10000 [urdf]=10000 [mesh]=2000 [
 jobs="${MDDUAL_JOBS:-$(nproc)}"
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: MDDUAL_JOBS must be a positive integer (got '$jobs')"; exit 1; }
 declare -A pids
-# -O1 and line tables only, as the sanitizer builds of scripts/test.sh (and
-# the -O1 that libFuzzer's documentation builds with).
+# -O1 and line tables only, as the sanitizer builds of scripts/test.sh.
+source scripts/instrumented-flags.sh
 CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DMDDUAL_BUILD_FUZZERS=ON \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$instrumented_flags" -DMDDUAL_BUILD_FUZZERS=ON \
   -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF >/dev/null
 cmake --build build/fuzz -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl
 

@@ -16,11 +16,9 @@ cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DMDDUAL_WARNINGS_AS_ERRO
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"
 
-# The instrumented builds (sanitizers here, fuzzers in scripts/fuzz.sh) use
-# -O1 and line tables only (-g1: file and line in every report, no variable
-# info). Against -O2 -g on the 2-core machine: the ASan + UBSan build 306 s
-# -> 163 s with its tests as fast (62 s), the TSan build 177 s -> 133 s.
-san_flags="-O1 -g1 -DNDEBUG"
+# The instrumented builds' flags (-O1, line tables): scripts/instrumented-flags.sh.
+source scripts/instrumented-flags.sh
+san_flags="$instrumented_flags"
 
 echo "== core tests under address + undefined sanitizers"
 # Core only: the planning layer is not needed for the core tests (its

@@ -67,6 +67,35 @@ PairBatch pairBatch(const py::object& X_WA, const py::object& X_WB) {
   return p;
 }
 
+/// Runs query(k, warm) for k = 0 .. n - 1 without the GIL, with one warm
+/// start carried from query to query (nullptr without warm_start); an error
+/// of query k is re-thrown with "<function>: query k: " before its message.
+/// The output arrays' pointers must be taken before (under the GIL).
+template <typename Query>
+void runQueries(const char* function, std::size_t n, bool warm_start, const Query& query) {
+  py::gil_scoped_release release;
+  WarmStart warm;
+  for (std::size_t k = 0; k < n; ++k) {
+    try {
+      query(k, warm_start ? &warm : nullptr);
+    } catch (const Error&) {
+      rethrowWithPrefix(queryPrefix(function, k));
+    }
+  }
+}
+
+/// Query k's input: the pair at its poses, direction s_W.
+DirectionalInput directionalInput(const ConvexPolytope& a, const ConvexPolytope& b, const PairBatch& p, std::size_t k,
+                                  const Eigen::Vector3d& s_W) {
+  DirectionalInput in;
+  in.a = &a;
+  in.X_WA = p.X_WA[k];
+  in.b = &b;
+  in.X_WB = p.X_WB[k];
+  in.s_W = s_W;
+  return in;
+}
+
 py::dict mddBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b, const py::object& X_WB,
                   const py::object& directions, bool warm_start) {
   PairBatch p = pairBatch(X_WA, X_WB);
@@ -79,36 +108,21 @@ py::dict mddBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexP
   auto t_hi = scalars(n);
   auto normal = vectors(n);
   auto point = vectors(n);
-  {
-    std::int8_t* status_out = status.mutable_data();
-    double* distance_out = distance.mutable_data();
-    double* t_lo_out = t_lo.mutable_data();
-    double* t_hi_out = t_hi.mutable_data();
-    double* normal_out = normal.mutable_data();
-    double* point_out = point.mutable_data();
-    py::gil_scoped_release release;
-    WarmStart warm;
-    for (std::size_t k = 0; k < n; ++k) {
-      DirectionalInput in;
-      in.a = &a;
-      in.X_WA = p.X_WA[k];
-      in.b = &b;
-      in.X_WB = p.X_WB[k];
-      in.s_W = s[k];
-      MddResult r;
-      try {
-        r = mdd(in, warm_start ? &warm : nullptr);
-      } catch (const Error&) {
-        rethrowWithPrefix(queryPrefix("mdd_batch", k));
-      }
-      status_out[k] = static_cast<std::int8_t>(r.status);
-      distance_out[k] = r.distance;
-      t_lo_out[k] = r.t_lo;
-      t_hi_out[k] = r.t_hi;
-      store(normal_out, k, r.contact.normal_W);
-      store(point_out, k, r.contact.point_W);
-    }
-  }
+  std::int8_t* status_out = status.mutable_data();
+  double* distance_out = distance.mutable_data();
+  double* t_lo_out = t_lo.mutable_data();
+  double* t_hi_out = t_hi.mutable_data();
+  double* normal_out = normal.mutable_data();
+  double* point_out = point.mutable_data();
+  runQueries("mdd_batch", n, warm_start, [&](std::size_t k, WarmStart* warm) {
+    const MddResult r = mdd(directionalInput(a, b, p, k, s[k]), warm);
+    status_out[k] = static_cast<std::int8_t>(r.status);
+    distance_out[k] = r.distance;
+    t_lo_out[k] = r.t_lo;
+    t_hi_out[k] = r.t_hi;
+    store(normal_out, k, r.contact.normal_W);
+    store(point_out, k, r.contact.point_W);
+  });
   py::dict out;
   out["status"] = status;
   out["distance"] = distance;
@@ -132,36 +146,22 @@ py::dict toiBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexP
   auto toi_exact = py::array_t<bool>(static_cast<py::ssize_t>(n));
   auto normal = vectors(n);
   auto point = vectors(n);
-  {
-    std::int8_t* status_out = status.mutable_data();
-    double* toi_out = toi_values.mutable_data();
-    bool* exact_out = toi_exact.mutable_data();
-    double* normal_out = normal.mutable_data();
-    double* point_out = point.mutable_data();
-    py::gil_scoped_release release;
-    WarmStart warm;
-    for (std::size_t k = 0; k < n; ++k) {
-      DirectionalInput in;
-      in.a = &a;
-      in.X_WA = p.X_WA[k];
-      in.b = &b;
-      in.X_WB = p.X_WB[k];
-      in.s_W = s[k];
-      in.max_distance = limit[k];
-      in.exact_toi = exact;
-      ToiResult r;
-      try {
-        r = toi(in, warm_start ? &warm : nullptr);
-      } catch (const Error&) {
-        rethrowWithPrefix(queryPrefix("toi_batch", k));
-      }
-      status_out[k] = static_cast<std::int8_t>(r.status);
-      toi_out[k] = r.toi;
-      exact_out[k] = r.toi_exact;
-      store(normal_out, k, r.contact.normal_W);
-      store(point_out, k, r.contact.point_W);
-    }
-  }
+  std::int8_t* status_out = status.mutable_data();
+  double* toi_out = toi_values.mutable_data();
+  bool* exact_out = toi_exact.mutable_data();
+  double* normal_out = normal.mutable_data();
+  double* point_out = point.mutable_data();
+  runQueries("toi_batch", n, warm_start, [&](std::size_t k, WarmStart* warm) {
+    DirectionalInput in = directionalInput(a, b, p, k, s[k]);
+    in.max_distance = limit[k];
+    in.exact_toi = exact;
+    const ToiResult r = toi(in, warm);
+    status_out[k] = static_cast<std::int8_t>(r.status);
+    toi_out[k] = r.toi;
+    exact_out[k] = r.toi_exact;
+    store(normal_out, k, r.contact.normal_W);
+    store(point_out, k, r.contact.point_W);
+  });
   py::dict out;
   out["status"] = status;
   out["toi"] = toi_values;
@@ -178,29 +178,20 @@ py::dict intersectBatch(const ConvexPolytope& a, const py::object& X_WA, const C
   auto status = codes(n);
   auto intersecting = py::array_t<bool>(static_cast<py::ssize_t>(n));
   auto separating_normal = vectors(n);
-  {
-    std::int8_t* status_out = status.mutable_data();
-    bool* intersecting_out = intersecting.mutable_data();
-    double* normal_out = separating_normal.mutable_data();
-    py::gil_scoped_release release;
-    WarmStart warm;
-    for (std::size_t k = 0; k < n; ++k) {
-      IntersectInput in;
-      in.a = &a;
-      in.X_WA = p.X_WA[k];
-      in.b = &b;
-      in.X_WB = p.X_WB[k];
-      IntersectResult r;
-      try {
-        r = intersect(in, warm_start ? &warm : nullptr);
-      } catch (const Error&) {
-        rethrowWithPrefix(queryPrefix("intersect_batch", k));
-      }
-      status_out[k] = static_cast<std::int8_t>(r.status);
-      intersecting_out[k] = r.intersecting;
-      store(normal_out, k, r.separating_normal_W);
-    }
-  }
+  std::int8_t* status_out = status.mutable_data();
+  bool* intersecting_out = intersecting.mutable_data();
+  double* normal_out = separating_normal.mutable_data();
+  runQueries("intersect_batch", n, warm_start, [&](std::size_t k, WarmStart* warm) {
+    IntersectInput in;
+    in.a = &a;
+    in.X_WA = p.X_WA[k];
+    in.b = &b;
+    in.X_WB = p.X_WB[k];
+    const IntersectResult r = intersect(in, warm);
+    status_out[k] = static_cast<std::int8_t>(r.status);
+    intersecting_out[k] = r.intersecting;
+    store(normal_out, k, r.separating_normal_W);
+  });
   py::dict out;
   out["status"] = status;
   out["intersecting"] = intersecting;

@@ -9,7 +9,8 @@ FCL discrete's, the longest run against the limit (does a run end near its
 limit?), invalid solutions, median peak memory, and the median verification
 time per solved run; then the issue's targets with their verdicts as measured.
 The text replaces what lies between `<!-- mesh-results:begin -->` and
-`<!-- mesh-results:end -->` in README.md (--readme), or goes to standard output.
+`<!-- mesh-results:end -->` in README.md (--readme; --marker names other
+markers), or goes to standard output.
 
     scripts/mesh_results.py [--bench out/bench-mesh] [--readme README.md] [--command TEXT]
 """
@@ -25,7 +26,7 @@ import readme_markers  # noqa: E402
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 CONFIGS = ["bugtrap", "twistycool", "cubicles_mesh", "apartment", "maze_planar"]
 CHECKERS = ["mdd", "fcl"]
-BEGIN, END = "<!-- mesh-results:begin -->", "<!-- mesh-results:end -->"
+MARKER = "mesh-results"
 
 
 def pair(values, fn):
@@ -37,7 +38,7 @@ def median_of(rows, key):
     return bench_report.median(vals) if vals else None
 
 
-def overview(bench_dir, command):
+def overview(bench_dir, command, marker=MARKER):
     lines = ["| config (runs x limit) | planner | success mdd / fcl | median time (s) mdd / fcl | mdd / FCL | "
              "longest run / limit mdd / fcl | invalid mdd / fcl | memory (MB) mdd / fcl | verification (s) mdd / fcl |",
              "|---|---|---|---|---|---|---|---|---|"]
@@ -79,9 +80,10 @@ def overview(bench_dir, command):
                     overruns.append("%s %s %s: %.1f s for %g s" % (c, p, k, t, limit))
     if not found:
         raise SystemExit("mesh_results: no %s/<config>/bench.db (run scripts/run-mesh-bench.sh)" % bench_dir)
-    text = ["Made by `scripts/mesh_results.py --readme README.md` from `%s`. FCL is OMPL's discrete motion "
+    made_by = "scripts/mesh_results.py --readme README.md" + ("" if marker == MARKER else " --marker " + marker)
+    text = ["Made by `%s` from `%s`. FCL is OMPL's discrete motion "
             "validator at the default resolution with FCL's collide(); every solution verified (exact MDD edge "
-            "check + dense FCL check); a run without a verified solution counts at the time limit." % command, ""]
+            "check + dense FCL check); a run without a verified solution counts at the time limit." % (made_by, command), ""]
     text += lines + [""]
     n_met = sum(v.endswith(": met") for v in verdicts)
     text.append("Targets as measured:")
@@ -101,12 +103,15 @@ def main():
     parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-mesh"))
     parser.add_argument("--readme", help="replace the text between the mesh-results markers in this file")
     parser.add_argument("--command", default="./scripts/run-mesh-bench.sh")
+    parser.add_argument("--marker", default=MARKER,
+                        help="the markers' name: <!-- NAME:begin --> ... <!-- NAME:end --> (default %(default)s)")
     args = parser.parse_args()
-    text = overview(args.bench, args.command)
+    text = overview(args.bench, args.command, args.marker)
     if not args.readme:
         sys.stdout.write(text)
         return
-    readme_markers.replace_between(args.readme, BEGIN, END, text, "mesh_results")
+    readme_markers.replace_between(args.readme, "<!-- %s:begin -->" % args.marker, "<!-- %s:end -->" % args.marker,
+                                   text, "mesh_results")
 
 
 if __name__ == "__main__":

@@ -45,6 +45,7 @@ struct Interval {
 
 struct Triple {
   double bound;  ///< lower bound of the first contact fraction of any pair in it
+  double until;  ///< no contact in it after this fraction (its volumes' overlap ends)
   int robot;     ///< robot node
   int world;     ///< world node, with its tree: 2 * node + tree (0: static, 1: overflow)
   int interval;
@@ -117,11 +118,12 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     Obb box_W;
   } posed;
   // Lower bound of the first contact in the triple, +inf when it is cleared.
-  const auto bound = [&](int rn, int wn, int iv) {
+  const auto bound = [&](int rn, int wn, int iv, double* until) {
     ++out->sub_edges;
     const Interval& I = intervals[static_cast<std::size_t>(iv)];
     const Bvh::Node& N = robot_tree_.node(rn);
     const Bvh::Node& M = worldNode(wn);
+    *until = I.tb;
     if (posed.rn != rn || posed.iv != iv) {
       posed.rn = rn;
       posed.iv = iv;
@@ -144,24 +146,29 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if (I.length == 0.0) return obbsDisjoint(M.obb, box_W, slack) ? kInf : I.ta;
     double lo = 0.0, hi = 0.0;
     if (!obbCastInterval(M.obb, box_W, I.u_W, I.length, slack, &lo, &hi)) return kInf;
+    *until = I.ta + (I.tb - I.ta) * (hi / I.length);
     return I.ta + (I.tb - I.ta) * (lo / I.length);
   };
   double best = kInf;  // smallest finest-level contact fraction found (kLastValid: any level)
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
     if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
-    const double b = bound(rn, wn, iv);
+    double until = 0.0;
+    const double b = bound(rn, wn, iv, &until);
     if (b < best) {
-      heap.push_back(Triple{b, rn, wn, iv});
+      heap.push_back(Triple{b, until, rn, wn, iv});
       if (first_contact) std::push_heap(heap.begin(), heap.end(), later);
     }
   };
   const auto splitTime = [&](const Triple& t, const Interval& I) {
     const double tm = 0.5 * (I.ta + I.tb);
-    const int first = makeInterval(I.ta, tm);
-    const int second = makeInterval(tm, I.tb);
-    push(t.robot, t.world, first);
-    push(t.robot, t.world, second);
+    // A half outside [t.bound, t.until] holds no contact: the triple's
+    // volumes, which hold its pieces over all of I, meet only then. Callgrind
+    // (benchmarks/planning, --edges 200, every kind of edge): 2.4% fewer
+    // instructions in bugtrap's checks (one-time enlarged pieces excluded),
+    // 1.2% in twistycool's.
+    if (t.bound <= tm) push(t.robot, t.world, makeInterval(I.ta, tm));
+    if (t.until >= tm) push(t.robot, t.world, makeInterval(tm, I.tb));
   };
   // The core on a pair of pieces over an interval with e <= delta: robot
   // piece i enlarged at the finest level whose enlargement still covers e,
@@ -234,7 +241,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       const double tm = 0.5 * (I.ta + I.tb);
       for (const int half : {makeInterval(tm, I.tb), makeInterval(I.ta, tm)}) {
         const Interval& H = intervals[static_cast<std::size_t>(half)];
-        if (!(bound(rn, wn, half) < kInf)) continue;
+        double until = 0.0;
+        if (!(bound(rn, wn, half, &until) < kInf)) continue;
         const LeafResult r = leafQuery(i, j, H, growth(robot_tree_.node(rn), H));
         if (!r.hit) continue;
         if (r.finest || trueContact(i, j, r.fraction)) {

@@ -48,7 +48,10 @@
 //      of N touches a piece of M at any time of I.
 //      Otherwise it is split into two triples that cover it: I halved, or
 //      the larger of N and M replaced by its children (which of them is a
-//      matter of speed, not soundness: mdd_scene_rotation.cpp). A pair of
+//      matter of speed, not soundness: mdd_scene_rotation.cpp). The swept
+//      oriented boxes meet only for s in [s_lo, s_hi], so every contact in
+//      the triple lies at t in [ta + (tb - ta) s_lo / |v|, ta + (tb - ta)
+//      s_hi / |v|]: a half of I outside that window is dropped, not split. A pair of
 //      leaves (robot piece i, world piece j) with e <= delta is checked with
 //      the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
 //      <= refinement_levels with delta_k >= e (enlargePiece: it holds every

@@ -2,6 +2,7 @@
 // Gaussian-arc wedges, and the documented errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -60,6 +61,24 @@ TEST(Polytope, UnitCube) {
     EXPECT_NEAR(cube.faceOffset(f), 0.5, 1e-15);
   }
   expectWellFormed(cube);
+}
+
+// Edge::otherFace: across every edge of a face lies a different face that
+// also lists the edge, and crossing back returns to the first; on a cube, the
+// face across is perpendicular.
+TEST(Polytope, OtherFaceCrossesEachEdgeToItsNeighbour) {
+  const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box({0.5, 0.5, 0.5}));
+  for (int f = 0; f < cube.numFaces(); ++f) {
+    for (const int e : cube.faceEdges(f)) {
+      const ConvexPolytope::Edge& edge = cube.edge(e);
+      const int g = edge.otherFace(f);
+      EXPECT_NE(g, f) << "face " << f << ", edge " << e;
+      EXPECT_EQ(edge.otherFace(g), f) << "face " << f << ", edge " << e;
+      const IndexRange g_edges = cube.faceEdges(g);
+      EXPECT_NE(std::find(g_edges.begin(), g_edges.end(), e), g_edges.end()) << "face " << g << ", edge " << e;
+      EXPECT_NEAR(cube.faceNormal(f).dot(cube.faceNormal(g)), 0.0, 1e-15);
+    }
+  }
 }
 
 TEST(Polytope, LatticeKeepsOnlyCornersAndMergesCoplanarFacets) {

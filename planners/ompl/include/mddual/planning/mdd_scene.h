@@ -51,9 +51,9 @@
 //      matter of speed, not soundness: mdd_scene_rotation.cpp). The swept
 //      oriented boxes meet only for s in [s_lo, s_hi], so every contact in
 //      the triple lies at t in [ta + (tb - ta) s_lo / |v|, ta + (tb - ta)
-//      s_hi / |v|]: a half of I outside that window is dropped, not split. A pair of
-//      leaves (robot piece i, world piece j) with e <= delta is checked with
-//      the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
+//      s_hi / |v|]: a half of I outside that window is dropped, not split.
+//      A pair of leaves (robot piece i, world piece j) with e <= delta is
+//      checked with the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
 //      <= refinement_levels with delta_k >= e (enlargePiece: it holds every
 //      point within delta_k of the piece, hence piece i over all of I), at
 //      orientation R(tm), swept from p(ta) along v against piece j with toi

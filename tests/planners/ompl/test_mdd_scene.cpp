@@ -539,6 +539,51 @@ TEST(WorldUpdates, OtherPairsKeepTheirWarmStarts) {
   EXPECT_GT(filled, 0);  // the queries did warm some pairs
 }
 
+/// Support value of a polytope's vertices in direction d.
+double supportValue(const ConvexPolytope& p, const Eigen::Vector3d& d) {
+  double h = -kInf;
+  for (const Eigen::Vector3d& v : p.vertices()) h = std::max(h, v.dot(d));
+  return h;
+}
+
+// enlargePiece must hold every point within delta of the piece (support
+// function at least h_P + delta in every direction: the rotating scheme's
+// soundness rests on it) and add no more than the cube's circumradius
+// (sqrt(3) delta). A triangle takes the cube sum itself (support exactly
+// h_P + delta' |d|_1, delta' = delta (1 + 1e-9) the margin of the scale):
+// the icosahedron is not tried for triangles.
+TEST(EnlargePiece, HoldsThePieceGrownByDeltaAndTakesTheCubeForTriangles) {
+  testing::Rng rng(testing::seed() * 41);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0);
+  const double delta = 0.05;
+  int triangles = 0, solids = 0;
+  for (int k = 0; k < 40; ++k) {
+    const bool triangle = k % 2 == 0;
+    const generators::Points points = triangle
+                                          ? generators::triangle(Eigen::Vector3d(coord(rng), coord(rng), coord(rng)),
+                                                                 Eigen::Vector3d(coord(rng), coord(rng), coord(rng)),
+                                                                 Eigen::Vector3d(coord(rng), coord(rng), coord(rng)))
+                                          : generators::blob(12, Eigen::Vector3d(0.5, 0.3, 0.2), rng);
+    const scene::Piece piece =
+        scene::Piece::make(ConvexPolytope::fromPoints(points), scene::PieceKind::kConvex, "piece " + std::to_string(k));
+    ASSERT_EQ(piece.polytope.numVertices() == 3, triangle) << "piece " << k;
+    const scene::Piece grown = enlargePiece(piece, delta);
+    for (int m = 0; m < 200; ++m) {
+      const Eigen::Vector3d d = generators::randomUnitVector(rng);
+      const double h = supportValue(piece.polytope, d);
+      const double g = supportValue(grown.polytope, d);
+      EXPECT_GE(g, h + delta - 1e-12) << "piece " << k << " direction " << d.transpose();
+      EXPECT_LE(g, h + std::sqrt(3.0) * delta * (1.0 + 1e-6)) << "piece " << k << " direction " << d.transpose();
+      if (triangle) {
+        EXPECT_NEAR(g, h + delta * (1.0 + 1e-9) * d.lpNorm<1>(), 1e-12) << "piece " << k;
+      }
+    }
+    ++(triangle ? triangles : solids);
+  }
+  EXPECT_EQ(triangles, 20);
+  EXPECT_EQ(solids, 20);
+}
+
 TEST(WorldUpdates, BadUpdatesAreRefusedAndLeaveTheSceneAsItWas) {
   const examples::ExampleScene& scene = testing::allScenes()[0];  // primitives
   MddScene mdd(scene.robot, scene.world);

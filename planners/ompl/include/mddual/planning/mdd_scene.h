@@ -399,8 +399,10 @@ class MddScene {
 };
 
 /// `piece` enlarged to contain every point within `delta` of it: the
-/// Minkowski sum with an icosahedron or a cube of inradius delta (the one
-/// whose hull has fewer vertices), as a kConvex piece.
+/// Minkowski sum with a cube of inradius delta (axes of the piece's frame),
+/// or for a piece of more than three vertices with an icosahedron of that
+/// inradius when its hull has no more vertices than the cube's; a kConvex
+/// piece within sqrt(3) delta of `piece`.
 scene::Piece enlargePiece(const scene::Piece& piece, double delta);
 
 }  // namespace mddual::planning

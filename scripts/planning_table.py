@@ -7,7 +7,8 @@ scene and edge kind (state checks, MDD and OMPL's discrete + FCL time per edge a
 their ratio, the ratio on valid and on invalid edges alone, FCL's continuous
 validator with conservative advancement and how often its answer differs from
 MDD's, and MDD's pair queries per edge), then the lastValid table (the same edges
-checked with lastValid: times and the mean fraction kept of the invalid edges) between the markers
+checked with lastValid: times and the mean fraction kept of the invalid edges), and MDD's one-time
+set-up per scene when the input has it, between the markers
 `<!-- planning:begin -->` and `<!-- planning:end -->` of README.md (--readme), or
 to standard output.
 
@@ -39,6 +40,8 @@ def parse(text):
         state = re.search(r"MDD ([\d.]+) us .*?FCL ([\d.]+) us .*?FCL / MDD = ([\d.]+)x", block)
         if not state:
             raise SystemExit("planning_table: scene '%s' has no state-check line" % name)
+        setup = re.search(r"MDD one-time set-up: enlarged robot pieces \((\d+) levels x (\d+) pieces\) ([\d.]+) ms",
+                          block)
         rows, last_valid = [], []
         for line in block.splitlines():
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
@@ -46,7 +49,7 @@ def parse(text):
                 rows.append(cells)
             elif len(cells) == 6 and cells[0].startswith("lastValid: "):
                 last_valid.append(cells)
-        scenes.append((name, state.groups(), rows, last_valid))
+        scenes.append((name, state.groups(), rows, last_valid, setup.groups() if setup else None))
     return header.groups(), scenes
 
 
@@ -58,20 +61,26 @@ def table(parsed, command):
            "| scene | state check MDD / FCL (us) | FCL / MDD | edges | MDD (us) | OMPL discrete + FCL (us) | "
            "discrete / MDD: all | valid only / invalid only | FCL CCD CA (us) | CA answers != MDD | pair queries |",
            "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for name, (t_mdd, t_fcl, ratio), rows, _ in scenes:
+    for name, (t_mdd, t_fcl, ratio), rows, _, _ in scenes:
         for r in rows:
             differs = "-" if r[12] == "-" else "%s of %s" % (r[12], edges)
             out.append("| %s | %s / %s | %sx | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 name, t_mdd, t_fcl, ratio, r[0], r[2], r[5], r[7], r[8], r[11], differs, r[3]))
-    if any(last_valid for _, _, _, last_valid in scenes):
+    if any(last_valid for _, _, _, last_valid, _ in scenes):
         out += ["", "The same edges with `checkMotion(s1, s2, lastValid)` (what KPIECE calls: the part of an invalid "
                 "edge before its first contact), and the mean fraction each keeps of the invalid edges:", "",
                 "| scene | edges | MDD (us) | OMPL discrete + FCL (us) | discrete / MDD | kept MDD / discrete |",
                 "|---|---|---|---|---|---|"]
-        for name, _, _, last_valid in scenes:
+        for name, _, _, last_valid, _ in scenes:
             for r in last_valid:
                 out.append("| %s | %s | %s | %s | %s | %s |" % (
                     name, r[0][len("lastValid: "):], r[1], r[3], r[4], r[5]))
+    setups = [(name, setup) for name, _, _, _, setup in scenes if setup]
+    if setups:
+        out += ["", "Not in the times above: MDD's one-time set-up per scene, the enlarged robot pieces of rotating "
+                "edges (levels x pieces), which a planning run builds on first use and the benchmark builds before "
+                "timing: " + "; ".join("%s %s ms (%s x %s)" % (name, ms, levels, pieces)
+                                       for name, (levels, pieces, ms) in setups) + "."]
     return "\n".join(out) + "\n"
 
 

@@ -62,6 +62,23 @@ bool later(const Triple& a, const Triple& b) {
 
 }  // namespace
 
+Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& axis_R, double across,
+                     double any) {
+  // A point x moves by Rot(axis, a) x - x, perpendicular to the axis, of
+  // length at most `across`: inside a disk of that radius perpendicular to
+  // the axis, whose support along the box's axis b_k is across sqrt(1 -
+  // (axis . b_k)^2) (none along b_k = axis). With the axis's coordinates
+  // a_i in the box's orthonormal axes, 1 - a_k^2 is the sum of the other two
+  // squares: no cancellation (sqrt(1 - a_k^2) gave 1e-8 for a_k = 1).
+  Obb box = box_R.transformed(X_WM, any);
+  const Eigen::Vector3d a = box_R.axes_F.transpose() * axis_R;
+  for (int k = 0; k < 3; ++k) {
+    const double i = a[(k + 1) % 3], j = a[(k + 2) % 3];
+    box.half[k] += across * std::sqrt(i * i + j * j);
+  }
+  return box;
+}
+
 void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance,
                              EdgeContact* out) const {
   const bool first_contact = query != EdgeQuery::kValidity;
@@ -101,18 +118,26 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     return static_cast<int>(intervals.size()) - 1;
   };
   // e(N, I): how far a point of N moves from its place at the middle
-  // orientation within I (rotation part only).
-  const auto growth = [&](const Bvh::Node& n, const Interval& I) {
+  // orientation within I (rotation part only), as the part across the axis
+  // (the rotation's own, perpendicular to the axis) and the slerp's
+  // round-off (any direction).
+  struct Growth {
+    double across = 0.0, any = 0.0;
+    double total() const { return across + any; }
+  };
+  const auto growthParts = [&](const Bvh::Node& n, const Interval& I) {
     const double to_axis = (n.centre - n.centre.dot(axis_R) * axis_R).norm();
     const double rho = std::min(n.max_norm, to_axis + n.radius);
-    return I.half_angle * rho * (1.0 + kGrowthSafety) + kSlerpRoundoffRel * rho;
+    return Growth{I.half_angle * rho * (1.0 + kGrowthSafety), kSlerpRoundoffRel * rho};
   };
+  const auto growth = [&](const Bvh::Node& n, const Interval& I) { return growthParts(n, I).total(); };
   // The robot node of the last triple bounded, posed over its interval: the
   // triples of one split share it (a world node's two children, the four
   // child pairs of a split of both), so it is computed once for them.
   struct PosedRobot {
     int rn = -1, iv = -1;
-    double e = 0.0;
+    Growth g;
+    double e = 0.0;  ///< g.total()
     Eigen::Vector3d c_W;
     bool has_box = false;  ///< box_W is computed after the sphere test passes
     Obb box_W;
@@ -127,7 +152,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if (posed.rn != rn || posed.iv != iv) {
       posed.rn = rn;
       posed.iv = iv;
-      posed.e = growth(N, I);
+      posed.g = growthParts(N, I);
+      posed.e = posed.g.total();
       posed.c_W = I.X_WM * N.centre;
       posed.has_box = false;
     }
@@ -138,7 +164,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const double reach = r + M.radius + slack;
     if ((posed.c_W + s * I.u_W - M.centre).squaredNorm() > reach * reach) return kInf;
     if (!posed.has_box) {
-      posed.box_W = N.obb.transformed(I.X_WM, e);
+      posed.box_W = rotationSweptBox(N.obb, I.X_WM, axis_R, posed.g.across, posed.g.any);
       posed.has_box = true;
     }
     const Obb& box_W = posed.box_W;

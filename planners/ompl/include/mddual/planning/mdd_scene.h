@@ -38,9 +38,12 @@
 //      So with e(N, I) = (tb - ta) / 2 * angle * rho(N), the part N of the
 //      robot at time t lies inside N at orientation R(tm), placed at p(t),
 //      grown by e; p(t) = p(ta) + (t - ta) / (tb - ta) v runs along the
-//      segment v = p(tb) - p(ta). The volumes used (N's oriented box, the
-//      axis-aligned box around it, and its sphere, at R(tm) placed at p(ta),
-//      grown by e; a grown box holds every point within e of the box) thus
+//      segment v = p(tb) - p(ta). The displacement Rot(axis, a) x - x is
+//      perpendicular to the axis, so N's oriented box need only grow by the
+//      support of a disk of radius e perpendicular to the axis: along the
+//      box's axis b_k, e sqrt(1 - (axis . b_k)^2) (rotationSweptBox). The
+//      volumes used (N's oriented box grown so, the axis-aligned box around
+//      it, and N's sphere grown by e, at R(tm) placed at p(ta)) thus
 //      hold N at every t in I when translated by s v for s = (t - ta) / (tb -
 //      ta) in [0, 1]. A triple is cleared when one of those volumes swept by
 //      s v, s in [0, 1], misses the same volume of M (swept sphere, slab and
@@ -69,7 +72,7 @@
 //      edge is declared free, no piece touches another at any time of it.
 //    e is computed with a safety factor (1 + 1e-6) and 1e-8 rho(N) added, for
 //    the round-off of OMPL's quaternion slerp (states stored with norms within
-//    1e-9 of 1). The enlargement at the leaves is at least delta /
+//    1e-9 of 1; the box grows by that part along each of its axes). The enlargement at the leaves is at least delta /
 //    2^refinement_levels, which keeps false alarms to clearances below it.
 //    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
 //    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
@@ -404,5 +407,15 @@ class MddScene {
 /// inradius when its hull has no more vertices than the cube's; a kConvex
 /// piece within sqrt(3) delta of `piece`.
 scene::Piece enlargePiece(const scene::Piece& piece, double delta);
+
+/// The oriented box box_R (body frame R) seen at X_WM, grown to hold every
+/// point of it moved by a rotation about the unit axis axis_R (through R's
+/// origin) that moves no point of the box by more than `across` (>= 0), and
+/// then by `any` (>= 0) in every direction: each half extent k grows by
+/// across sqrt(1 - (axis_R . b_k)^2) + any, b_k the box's axis (the
+/// rotation's displacements are perpendicular to the axis). The rotating
+/// scheme's robot volume over a time interval (see above).
+Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& axis_R, double across,
+                     double any);
 
 }  // namespace mddual::planning

@@ -72,8 +72,9 @@
 //      edge is declared free, no piece touches another at any time of it.
 //    e is computed with a safety factor (1 + 1e-6) and 1e-8 rho(N) added, for
 //    the round-off of OMPL's quaternion slerp (states stored with norms within
-//    1e-9 of 1; the box grows by that part along each of its axes). The enlargement at the leaves is at least delta /
-//    2^refinement_levels, which keeps false alarms to clearances below it.
+//    1e-9 of 1; the box grows by that part along each of its axes). The
+//    enlargement at the leaves is at least delta / 2^refinement_levels,
+//    which keeps false alarms to clearances below it.
 //    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
 //    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
 //    which the swept volumes meet; at the true first contact t* of a pair in
@@ -266,9 +267,10 @@ class MddScene {
   double rotationTolerance() const { return delta_; }
   int refinementLevels() const { return static_cast<int>(enlarged_.size()) - 1; }
   /// Robot piece i enlarged by delta / 2^level (frame R), level in [0,
-  /// refinementLevels()]. Built on first use (two small hulls per piece and
-  /// level: on a robot of 3,000 triangles building all of them up front took
-  /// most of a scene's set-up), thread-safe; the reference stays valid for
+  /// refinementLevels()]. Built on first use (one small hull per piece and
+  /// level, two for a piece of more than three vertices: on a robot of 3,000
+  /// triangles building all of them up front took most of a scene's set-up,
+  /// 1.7 s for the apartment's), thread-safe; the reference stays valid for
   /// the scene's lifetime. A failure to build one (a hull error; not seen on
   /// any scene, a piece grown by a ball is full-dimensional) therefore comes
   /// from the query that first needs it, not from the constructor.

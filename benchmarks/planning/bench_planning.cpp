@@ -201,8 +201,9 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
   for (int level = 0; level <= s.mdd->refinementLevels(); ++level) {
     for (int i = 0; i < pieces; ++i) s.mdd->enlargedPiece(level, i);
   }
-  std::printf("MDD one-time set-up: enlarged robot pieces (%d levels x %d pieces) %.1f ms\n\n",
-              s.mdd->refinementLevels() + 1, pieces, 1e3 * (nowSeconds() - setup_start));
+  std::printf("MDD one-time set-up: enlarged robot pieces (%d levels x %d pieces) %.1f ms (%s)\n\n",
+              s.mdd->refinementLevels() + 1, pieces, 1e3 * (nowSeconds() - setup_start),
+              opt.cpu ? "thread CPU time" : "wall-clock time");
 
   // ---- States.
   std::vector<ob::ScopedState<>> states;

@@ -137,7 +137,6 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   struct PosedRobot {
     int rn = -1, iv = -1;
     Growth g;
-    double e = 0.0;  ///< g.total()
     Eigen::Vector3d c_W;
     bool has_box = false;  ///< box_W is computed after the sphere test passes
     Obb box_W;
@@ -153,11 +152,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       posed.rn = rn;
       posed.iv = iv;
       posed.g = growthParts(N, I);
-      posed.e = posed.g.total();
       posed.c_W = I.X_WM * N.centre;
       posed.has_box = false;
     }
-    const double e = posed.e;
+    const double e = posed.g.total();
     const double r = N.radius + e;
     const double slack = kBvhSlackRel * (M.scale + I.X_WM.translation().cwiseAbs().maxCoeff() + N.scale + e + I.length);
     const double s = I.length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(I.u_W), 0.0, I.length) : 0.0;

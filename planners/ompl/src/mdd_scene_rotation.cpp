@@ -38,9 +38,9 @@ constexpr double kBothSplitRatio = 2.0;
 struct Interval {
   double ta = 0.0, tb = 1.0;
   Eigen::Isometry3d X_WM;   ///< orientation R(tm) (tm the middle), position p(ta)
-  Eigen::Vector3d u_W;      ///< unit direction of v = p(tb) - p(ta) (zero when v = 0)
-  double length = 0.0;      ///< |v|
+  Eigen::Vector3d v_W;      ///< p(tb) - p(ta)
   double half_angle = 0.0;  ///< (tb - ta) / 2 * angle
+  double sin_half = 0.0;    ///< sin(half_angle)
 };
 
 struct Triple {
@@ -60,6 +60,41 @@ bool later(const Triple& a, const Triple& b) {
   return a.bound > b.bound;
 }
 
+/// partSweep with sin(half_angle) given (computed once per interval).
+PartSweep partSweepWithSin(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
+                           double h, double sin_h, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W) {
+  // With c = centre_R, x = c + y (|y| <= radius) and k = axis x c (|k| =
+  // dist(c, axis)), a point's displacement from its place at R(tm) is
+  //   Rot(axis, a) x - x = sin(a) k - (1 - cos a) c_perp + (Rot(axis, a) y - y)
+  // for |a| <= h, all of it perpendicular to the axis.
+  // 1. Arc: its length is at most h dist(x, axis) <= h rho_arc: a disk of
+  //    that radius, at the middle pose, swept along v.
+  // 2. Chord: a = (2s - 1) h at s in [0, 1] (constant angular speed), and
+  //    sin(a) = (2s - 1) sin(h) + r(a) with |r(a)| <= h - sin h <= h^3 / 6,
+  //    1 - cos a <= h^2 / 2, |Rot(axis, a) y - y| <= h |y|: the centre's
+  //    chord, from -sin(h) k to +sin(h) k, becomes part of the sweep and
+  //    the disk's radius is h radius + (h^2 / 2 + h^3 / 6) |k|, of order h
+  //    times the part's own size instead of its distance from the axis.
+  const Eigen::Vector3d k_R = axis_R.cross(centre_R);
+  const double to_axis = k_R.norm();
+  const double any = kSlerpRoundoffRel * rho;
+  const double arc = h * std::min(rho, to_axis + radius) * (1.0 + kGrowthSafety);
+  const double chord = (h * radius + (0.5 * h * h + h * h * h / 6.0) * to_axis) * (1.0 + kGrowthSafety);
+  PartSweep out;
+  out.X_WN = X_WM;
+  out.v_W = v_W;
+  out.any = any;
+  if (!(chord < arc)) {
+    out.across = arc;
+    return out;
+  }
+  const Eigen::Vector3d k_W = X_WM.linear() * k_R;
+  out.X_WN.translation() -= sin_h * k_W;
+  out.v_W += (2.0 * sin_h) * k_W;
+  out.across = chord;
+  return out;
+}
+
 }  // namespace
 
 Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& axis_R, double across,
@@ -77,6 +112,11 @@ Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eige
     box.half[k] += across * std::sqrt(i * i + j * j);
   }
   return box;
+}
+
+PartSweep partSweep(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
+                    double half_angle, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W) {
+  return partSweepWithSin(centre_R, radius, rho, axis_R, half_angle, std::sin(half_angle), X_WM, v_W);
 }
 
 void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance,
@@ -110,34 +150,26 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     I.X_WM = Eigen::Isometry3d::Identity();
     I.X_WM.linear() = motion.orientation(0.5 * (ta + tb)).toRotationMatrix();
     I.X_WM.translation() = motion.position(ta);
-    const Eigen::Vector3d v = motion.position(tb) - I.X_WM.translation();
-    I.length = v.norm();
-    I.u_W = I.length > 0.0 ? Eigen::Vector3d(v / I.length) : Eigen::Vector3d::Zero();
+    I.v_W = motion.position(tb) - I.X_WM.translation();
     I.half_angle = 0.5 * (tb - ta) * motion.angle;
+    I.sin_half = std::sin(I.half_angle);
     intervals.push_back(I);
     return static_cast<int>(intervals.size()) - 1;
   };
-  // e(N, I): how far a point of N moves from its place at the middle
-  // orientation within I (rotation part only), as the part across the axis
-  // (the rotation's own, perpendicular to the axis) and the slerp's
-  // round-off (any direction).
-  struct Growth {
-    double across = 0.0, any = 0.0;
-    double total() const { return across + any; }
+  // How node N moves over I: a sweep along a segment and a growth e(N, I)
+  // (the header's arc or chord, whichever grows less).
+  const auto sweepOf = [&](const Bvh::Node& n, const Interval& I) {
+    return partSweepWithSin(n.centre, n.radius, n.max_norm, axis_R, I.half_angle, I.sin_half, I.X_WM, I.v_W);
   };
-  const auto growthParts = [&](const Bvh::Node& n, const Interval& I) {
-    const double to_axis = (n.centre - n.centre.dot(axis_R) * axis_R).norm();
-    const double rho = std::min(n.max_norm, to_axis + n.radius);
-    return Growth{I.half_angle * rho * (1.0 + kGrowthSafety), kSlerpRoundoffRel * rho};
-  };
-  const auto growth = [&](const Bvh::Node& n, const Interval& I) { return growthParts(n, I).total(); };
   // The robot node of the last triple bounded, posed over its interval: the
   // triples of one split share it (a world node's two children, the four
   // child pairs of a split of both), so it is computed once for them.
   struct PosedRobot {
     int rn = -1, iv = -1;
-    Growth g;
-    Eigen::Vector3d c_W;
+    PartSweep sweep;
+    Eigen::Vector3d u_W;   ///< unit direction of sweep.v_W (zero when it is zero)
+    double length = 0.0;   ///< |sweep.v_W|
+    Eigen::Vector3d c_W;   ///< N's sphere centre at the start of the sweep
     bool has_box = false;  ///< box_W is computed after the sphere test passes
     Obb box_W;
   } posed;
@@ -151,27 +183,32 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if (posed.rn != rn || posed.iv != iv) {
       posed.rn = rn;
       posed.iv = iv;
-      posed.g = growthParts(N, I);
-      posed.c_W = I.X_WM * N.centre;
+      posed.sweep = sweepOf(N, I);
+      posed.length = posed.sweep.v_W.norm();
+      posed.u_W = posed.length > 0.0 ? Eigen::Vector3d(posed.sweep.v_W / posed.length) : Eigen::Vector3d::Zero();
+      posed.c_W = posed.sweep.X_WN * N.centre;
       posed.has_box = false;
     }
-    const double e = posed.g.total();
+    const double e = posed.sweep.total();
     const double r = N.radius + e;
-    const double slack = kBvhSlackRel * (M.scale + I.X_WM.translation().cwiseAbs().maxCoeff() + N.scale + e + I.length);
-    const double s = I.length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(I.u_W), 0.0, I.length) : 0.0;
+    const double length = posed.length;
+    const Eigen::Vector3d& u_W = posed.u_W;
+    const double slack =
+        kBvhSlackRel * (M.scale + posed.sweep.X_WN.translation().cwiseAbs().maxCoeff() + N.scale + e + length);
+    const double s = length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(u_W), 0.0, length) : 0.0;
     const double reach = r + M.radius + slack;
-    if ((posed.c_W + s * I.u_W - M.centre).squaredNorm() > reach * reach) return kInf;
+    if ((posed.c_W + s * u_W - M.centre).squaredNorm() > reach * reach) return kInf;
     if (!posed.has_box) {
-      posed.box_W = rotationSweptBox(N.obb, I.X_WM, axis_R, posed.g.across, posed.g.any);
+      posed.box_W = rotationSweptBox(N.obb, posed.sweep.X_WN, axis_R, posed.sweep.across, posed.sweep.any);
       posed.has_box = true;
     }
     const Obb& box_W = posed.box_W;
-    if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), I.u_W, I.length, slack)) return kInf;
-    if (I.length == 0.0) return obbsDisjoint(M.obb, box_W, slack) ? kInf : I.ta;
+    if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), u_W, length, slack)) return kInf;
+    if (length == 0.0) return obbsDisjoint(M.obb, box_W, slack) ? kInf : I.ta;
     double lo = 0.0, hi = 0.0;
-    if (!obbCastInterval(M.obb, box_W, I.u_W, I.length, slack, &lo, &hi)) return kInf;
-    *until = I.ta + (I.tb - I.ta) * (hi / I.length);
-    return I.ta + (I.tb - I.ta) * (lo / I.length);
+    if (!obbCastInterval(M.obb, box_W, u_W, length, slack, &lo, &hi)) return kInf;
+    *until = I.ta + (I.tb - I.ta) * (hi / length);
+    return I.ta + (I.tb - I.ta) * (lo / length);
   };
   double best = kInf;  // smallest finest-level contact fraction found (kLastValid: any level)
   PieceContact best_contact;
@@ -196,14 +233,16 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   };
   // The core on a pair of pieces over an interval with e <= delta: robot
   // piece i enlarged at the finest level whose enlargement still covers e,
-  // swept along the interval's segment against world piece j.
+  // swept along its leaf's sweep (ps) against world piece j.
   struct LeafResult {
     bool hit = false;
     bool finest = false;
     double fraction = 0.0;  ///< lower bound of the pair's first contact on I (when hit)
     PieceContact contact;
   };
-  const auto leafQuery = [&](int i, int j, const Interval& I, double e) {
+  const auto leafQuery = [&](int i, int j, const Interval& I, const PartSweep& ps) {
+    const double e = ps.total();
+    const double length = ps.v_W.norm();
     int level = 0;
     while (level < finest && delta_ / std::ldexp(1.0, level + 1) >= e) ++level;
     LeafResult out_leaf;
@@ -215,18 +254,18 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const ConvexPolytope& obstacle = world[static_cast<std::size_t>(j)].polytope;
     WarmStart* warm = warmIn(*table, level + 1, i, world_->idOf(j));
     ++out->pair_queries;
-    if (I.length > 0.0) {
+    if (length > 0.0) {
       DirectionalInput in;
       in.a = &obstacle;
       in.b = &enlarged;
-      in.X_WB = I.X_WM;
-      in.s_W = I.u_W;
-      in.max_distance = I.length;
+      in.X_WB = ps.X_WN;
+      in.s_W = ps.v_W / length;
+      in.max_distance = length;
       in.exact_toi = first_contact && (out_leaf.finest || any_level);  // otherwise: whether to refine
       const ToiResult r = toi(in, warm);
-      if (r.status == ToiStatus::kNever || !(r.toi <= I.length)) return out_leaf;
+      if (r.status == ToiStatus::kNever || !(r.toi <= length)) return out_leaf;
       if (r.status == ToiStatus::kHit) {
-        out_leaf.fraction = I.ta + (I.tb - I.ta) * std::min(1.0, r.toi / I.length);
+        out_leaf.fraction = I.ta + (I.tb - I.ta) * std::min(1.0, r.toi / length);
         out_leaf.contact.p_WC = r.contact.point_W;
         out_leaf.contact.n_W = r.contact.normal_W;
       }
@@ -234,7 +273,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       IntersectInput in;
       in.a = &obstacle;
       in.b = &enlarged;
-      in.X_WB = I.X_WM;
+      in.X_WB = ps.X_WN;
       if (!intersect(in, warm).intersecting) return out_leaf;
     }
     out_leaf.hit = true;
@@ -267,7 +306,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
         const Interval& H = intervals[static_cast<std::size_t>(half)];
         double until = 0.0;
         if (!(bound(rn, wn, half, &until) < kInf)) continue;
-        const LeafResult r = leafQuery(i, j, H, growth(robot_tree_.node(rn), H));
+        const LeafResult r = leafQuery(i, j, H, sweepOf(robot_tree_.node(rn), H));
         if (!r.hit) continue;
         if (r.finest || trueContact(i, j, r.fraction)) {
           best = r.fraction;  // not a first contact: only `collides` is meaningful in this mode
@@ -303,7 +342,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const Bvh::Node& N = robot_tree_.node(t.robot);
     const Bvh::Node& M = worldNode(t.world);
     const Interval I = intervals[static_cast<std::size_t>(t.interval)];  // a copy: intervals may grow
-    const double e = growth(N, I);
+    const PartSweep ps = sweepOf(N, I);
+    const double e = ps.total();
     if (!N.isLeaf() || !M.isLeaf()) {
       // Split the interval when e is not small against the nodes that have
       // children; otherwise the larger of them.
@@ -318,9 +358,11 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       const double r = std::max(rn, rm);
       bool split_time = e > kTimeSplitAlways * r;
       if (!split_time && e > kTimeSplitNever * r) {
-        const Obb box_W = N.obb.transformed(I.X_WM, 0.0);
+        const Obb box_W = N.obb.transformed(ps.X_WN, 0.0);
+        const double length = ps.v_W.norm();
+        const Eigen::Vector3d u_W = length > 0.0 ? Eigen::Vector3d(ps.v_W / length) : Eigen::Vector3d::Zero();
         double lo = 0.0, hi = 0.0;
-        split_time = !obbCastIntervalFaces(M.obb, box_W, I.u_W, I.length, 0.0, &lo, &hi);
+        split_time = !obbCastIntervalFaces(M.obb, box_W, u_W, length, 0.0, &lo, &hi);
       }
       if (split_time) {
         splitTime(t, I);
@@ -347,7 +389,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const int i = robot_tree_.leafPiece(t.robot);
     const int j = worldLeaf(t.world);
     if (j < 0) continue;  // the piece is not in the world
-    const LeafResult r = leafQuery(i, j, I, e);
+    const LeafResult r = leafQuery(i, j, I, ps);
     if (!r.hit) continue;
     if (r.finest || any_level) {
       out->collides = true;

@@ -12,6 +12,7 @@
 #include "mddual/planning/clearance.h"
 #include "mddual/planning/edges.h"
 #include "mddual/planning/example_scenes.h"
+#include "test_support.h"
 
 namespace mddual::planning {
 namespace {

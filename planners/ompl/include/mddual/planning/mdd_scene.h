@@ -70,6 +70,27 @@
 //      a split replaces a triple by triples that cover it, and a triple is
 //      dropped only when cleared or when the pair is free on it. So when the
 //      edge is declared free, no piece touches another at any time of it.
+//    Chord sweep (partSweep): the growth above is of order h dist(N, axis)
+//      (h = (tb - ta) angle / 2), large for a small node far from the axis,
+//      although such a node moves along a nearly straight chord. Let (c, r)
+//      be N's bounding sphere, k = axis x c (|k| = dist(c, axis)), x = c + y
+//      a point of N (|y| <= r) and a = (2s - 1) h the angle at s = (t - ta)
+//      / (tb - ta) (slerp turns at constant speed). Then
+//        Rot(axis, a) x - x = sin(a) k - (1 - cos a) c_perp + (Rot(axis, a) y - y)
+//      with sin(a) = (2s - 1) sin(h) + q, |q| <= h - sin h <= h^3 / 6 (sin
+//      is concave on [0, h] for h <= pi; the chord below is taken only when
+//      its e is the smaller of the two, which needs h < 2), 1 - cos a <= h^2 / 2 and
+//      |Rot(axis, a) y - y| <= h r; every term is perpendicular to the axis.
+//      So N at time t lies inside N at orientation R(tm) placed at p(ta) -
+//      sin(h) R(tm) k, translated by s (v + 2 sin(h) R(tm) k), grown by
+//      e = h r + (h^2 / 2 + h^3 / 6) |k| perpendicular to the axis (with
+//      the safety factor and round-off part below): of order h times
+//      N's size plus h^2 times its distance from the axis. Each (node,
+//      interval) takes whichever of the two, arc or chord, has the smaller
+//      e, for all its volumes and, at a leaf, for the enlarged piece's sweep;
+//      the argument above holds with p(ta), v and e read as the chosen
+//      sweep's start, segment and growth (time maps to s linearly in both,
+//      so contact fractions and windows carry over unchanged).
 //    e is computed with a safety factor (1 + 1e-6) and 1e-8 rho(N) added, for
 //    the round-off of OMPL's quaternion slerp (states stored with norms within
 //    1e-9 of 1; the box grows by that part along each of its axes). The
@@ -411,13 +432,41 @@ class MddScene {
 scene::Piece enlargePiece(const scene::Piece& piece, double delta);
 
 /// The oriented box box_R (body frame R) seen at X_WM, grown to hold every
-/// point of it moved by a rotation about the unit axis axis_R (through R's
-/// origin) that moves no point of the box by more than `across` (>= 0), and
-/// then by `any` (>= 0) in every direction: each half extent k grows by
-/// across sqrt(1 - (axis_R . b_k)^2) + any, b_k the box's axis (the
-/// rotation's displacements are perpendicular to the axis). The rotating
-/// scheme's robot volume over a time interval (see above).
+/// point of it displaced perpendicular to the unit axis axis_R by at most
+/// `across` (>= 0; a rotation about the axis that moves no point of the box
+/// by more, or the chord sweep's residual, see partSweep), and then by `any`
+/// (>= 0) in every direction: each half extent k grows by across sqrt(1 -
+/// (axis_R . b_k)^2) + any, b_k the box's axis (the support of a disk of
+/// radius `across` perpendicular to the axis). The rotating scheme's robot
+/// volume over a time interval (see above).
 Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& axis_R, double across,
                      double any);
+
+/// How a part of the robot moves over a time interval of a rotating edge, as
+/// a straight sweep plus a growth (see the file comment, "Chord sweep"): the part's
+/// points at time ta + s (tb - ta), s in [0, 1], lie within `across` (a
+/// displacement perpendicular to the axis) plus `any` (any direction) of the
+/// part at pose X_WN translated by s v_W.
+struct PartSweep {
+  /// Orientation R(tm), the sweep's start position (p(ta), or shifted by the chord).
+  Eigen::Isometry3d X_WN = Eigen::Isometry3d::Identity();
+  /// The sweep over the interval (world units).
+  Eigen::Vector3d v_W = Eigen::Vector3d::Zero();
+  /// Growth perpendicular to the rotation axis (world units).
+  double across = 0.0;
+  /// Growth in every direction: the slerp round-off part (world units).
+  double any = 0.0;
+  double total() const { return across + any; }
+};
+
+/// The PartSweep of the points within `radius` of centre_R (body frame) over
+/// an interval whose middle pose is X_WM (orientation R(tm), position p(ta)),
+/// whose translation is v_W = p(tb) - p(ta) and whose rotation about the
+/// unit axis_R turns by half_angle (>= 0) either way of
+/// R(tm); `rho` (>= 0) bounds the points' distance from the body origin (the
+/// slerp round-off part). Of the two sweeps in the header's argument (the
+/// arc as a disk growth, the chord as a sweep), the one with less growth.
+PartSweep partSweep(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
+                    double half_angle, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W);
 
 }  // namespace mddual::planning

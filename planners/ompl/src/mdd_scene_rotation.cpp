@@ -12,8 +12,8 @@ namespace mddual::planning {
 namespace {
 
 using detail::kInf;
-/// e(N, I) is computed times (1 + kGrowthSafety), plus kSlerpRoundoffRel *
-/// rho(N): OMPL's slerp between states whose quaternion norms are within 1e-9
+/// e(N, I) is computed times (1 + kGrowthSafety), plus kSlerpRoundoffRel
+/// times N's largest distance from the body origin: OMPL's slerp between states whose quaternion norms are within 1e-9
 /// of 1 differs from EdgeMotion's rotation by about that much (see the header).
 constexpr double kGrowthSafety = 1e-6;
 constexpr double kSlerpRoundoffRel = 1e-8;

@@ -76,8 +76,10 @@ TEST(RotationSweptBox, HoldsTheRotatedBoxAndDoesNotGrowAlongTheAxis) {
 // `any` of the displacement along the axis; the growth is never more than
 // the arc bound (h times the part's largest distance from the axis); and it
 // is not loose: at 0.9 of `across` some point escapes in some case of each
-// kind. Half angles up to pi (an extended edge's root interval), most of
-// them small, where the chord is taken.
+// kind. Half angles: most of them small (where the chord is taken), a
+// quarter just above 1.372 (where the arc is always taken and still within
+// 0.92 of tight: 2 sin(h / 2) / h), an eighth in (pi, 4 pi] (an extended
+// edge's root interval; the arc).
 TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
   testing::Rng rng(testing::seed() * 47);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -88,7 +90,9 @@ TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
         (Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 2.0 - Eigen::Vector3d::Ones()) * 2.0;
     const double radius = 0.01 + 0.5 * unit(rng);
     const Eigen::Vector3d axis_R = generators::randomUnitVector(rng);
-    const double h = k % 4 == 0 ? kPi * unit(rng) : 0.2 * unit(rng);
+    const double h = k % 4 == 0   ? 1.38 + 0.07 * unit(rng)
+                     : k % 8 == 2 ? kPi * (1.0 + 3.0 * unit(rng))
+                                  : 0.2 * unit(rng);
     const double rho = centre_R.norm() + radius;
     Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
     X_WM.linear() = generators::randomRotation(rng);
@@ -98,6 +102,9 @@ TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
     const double to_axis = axis_R.cross(centre_R).norm();
     EXPECT_LE(ps.across, h * std::min(rho, to_axis + radius) * (1.0 + 1e-6) * (1.0 + 1e-15)) << "case " << k;
     const bool chord = ps.v_W != v_W;
+    if (h >= 1.38) {  // h / 2 + h^2 / 6 >= 1: the arc
+      EXPECT_FALSE(chord) << "case " << k << ": the chord at h " << h;
+    }
     chord_cases += chord;
     arc_cases += !chord;
     const Eigen::Vector3d axis_W = X_WM.linear() * axis_R;
@@ -124,7 +131,7 @@ TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
   }
   // Both kinds occur and neither bound is loose in every case.
   EXPECT_GT(chord_cases, kCases / 2);
-  EXPECT_GT(arc_cases, kCases / 20);
+  EXPECT_GE(arc_cases, kCases * 3 / 8);
   EXPECT_GT(chord_tight, 0);
   EXPECT_GT(arc_tight, 0);
 }

@@ -79,8 +79,10 @@
 //        Rot(axis, a) x - x = sin(a) k - (1 - cos a) c_perp + (Rot(axis, a) y - y)
 //      with sin(a) = (2s - 1) sin(h) + q, |q| <= h - sin h <= h^3 / 6 (sin
 //      is concave on [0, h] for h <= pi; the chord below is taken only when
-//      its e is the smaller of the two, which needs h < 2), 1 - cos a <= h^2 / 2 and
-//      |Rot(axis, a) y - y| <= h r; every term is perpendicular to the axis.
+//      its e is the smaller of the two, which needs |k| > 0 and h / 2 + h^2
+//      / 6 < 1, i.e. h < (sqrt(33) - 3) / 2 ~ 1.37), 1 - cos a <= h^2 / 2
+//      and |Rot(axis, a) y - y| <= h r; every term is perpendicular to the
+//      axis.
 //      So N at time t lies inside N at orientation R(tm) placed at p(ta) -
 //      sin(h) R(tm) k, translated by s (v + 2 sin(h) R(tm) k), grown by
 //      e = h r + (h^2 / 2 + h^3 / 6) |k| perpendicular to the axis (with
@@ -91,9 +93,10 @@
 //      the argument above holds with p(ta), v and e read as the chosen
 //      sweep's start, segment and growth (time maps to s linearly in both,
 //      so contact fractions and windows carry over unchanged).
-//    e is computed with a safety factor (1 + 1e-6) and 1e-8 rho(N) added, for
-//    the round-off of OMPL's quaternion slerp (states stored with norms within
-//    1e-9 of 1; the box grows by that part along each of its axes). The
+//    e is computed with a safety factor (1 + 1e-6) and 1e-8 times N's largest
+//    distance from the body origin added, for the round-off of OMPL's
+//    quaternion slerp (states stored with norms within 1e-9 of 1: a small
+//    rotation of any axis; the box grows by that part along each of its axes). The
 //    enlargement at the leaves is at least delta / 2^refinement_levels,
 //    which keeps false alarms to clearances below it.
 //    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
@@ -463,8 +466,8 @@ struct PartSweep {
 /// an interval whose middle pose is X_WM (orientation R(tm), position p(ta)),
 /// whose translation is v_W = p(tb) - p(ta) and whose rotation about the
 /// unit axis_R turns by half_angle (>= 0) either way of
-/// R(tm); `rho` (>= 0) bounds the points' distance from the body origin (the
-/// slerp round-off part). Of the two sweeps in the header's argument (the
+/// R(tm); `rho` (>= 0) bounds the points' distance from the body origin (it
+/// gives the slerp round-off part and caps the arc's growth). Of the two sweeps in the header's argument (the
 /// arc as a disk growth, the chord as a sweep), the one with less growth.
 PartSweep partSweep(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
                     double half_angle, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W);

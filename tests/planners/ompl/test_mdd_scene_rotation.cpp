@@ -10,11 +10,13 @@
 #include <random>
 
 #include "mddual/generators.h"
+#include "mddual/scene/loaders.h"
 #include "test_support.h"
 
 namespace mddual::planning {
 namespace {
 
+using testing::kInf;
 using testing::kPi;
 
 // rotationSweptBox: every point of the box, rotated about the axis by any
@@ -157,6 +159,59 @@ TEST(PartSweep, ClosedFormChordAndArc) {
   EXPECT_NEAR(on_axis.across, h * r * (1.0 + 1e-6), 1e-19);
   EXPECT_EQ(on_axis.v_W, v_W);
   EXPECT_EQ(on_axis.X_WN.translation(), X_WM.translation());
+}
+
+// checkEdge where only the arc's bulge beyond the chord touches: a robot
+// turns by 1 rad about z (from -0.5 to 0.5 rad), and a small cube (side
+// 0.01) sits on the arc of the robot's tip, at radius 0.975, where the tip
+// passes at t = 7/16, between the probe states (t = k / 8): 0.117 outside
+// the line of the tip's chord over the whole edge. Two robots: a rod of 20
+// cubes (side 0.05) along the body x axis from the origin, and a lone cube
+// of side 0.01 at (0.975, 0, 0) (a part far from its body origin, the
+// robot's only piece: its leaf meets the obstacle's over the whole edge with
+// a growth below delta, where a chord sweep without its (h^2 / 2 + h^3 / 6)
+// |k| term would clear the pair at once). The edge must collide (a dense
+// check of 20,001 states finds the contact; none of the probe states does),
+// its first-contact bound no later than the dense check's first colliding
+// state; each robot also turning the other way round, from 0.5 to -0.5 rad.
+TEST(ChordSweep, EdgeTouchedOnlyByTheArcsBulgeCollides) {
+  std::vector<scene::Piece> rod;
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::Isometry3d X_RB(Eigen::Translation3d(0.025 + 0.05 * i, 0.0, 0.0));
+    rod.push_back(scene::boxPiece(Eigen::Vector3d::Constant(0.05), X_RB, "rod cube " + std::to_string(i)));
+  }
+  const double angle = 1.0, r_tip = 0.975;
+  const std::vector<scene::Piece> tip = {scene::boxPiece(
+      Eigen::Vector3d::Constant(0.01), Eigen::Isometry3d(Eigen::Translation3d(r_tip, 0.0, 0.0)), "tip cube")};
+  const double a_hit = -0.5 + angle * 7.0 / 16.0;
+  const Eigen::Isometry3d X_WO(Eigen::Translation3d(r_tip * std::cos(a_hit), r_tip * std::sin(a_hit), 0.0));
+  const auto world = std::make_shared<scene::World>(
+      std::vector<scene::Piece>{scene::boxPiece(Eigen::Vector3d::Constant(0.01), X_WO, "obstacle")}, "world");
+  for (const auto& [name, pieces] : {std::make_pair("rod", rod), std::make_pair("tip", tip)}) {
+    const MddScene mdd(std::make_shared<scene::RigidBody>(pieces, name), world);
+    for (const double sign : {1.0, -1.0}) {
+      const std::string what = std::string(name) + (sign > 0 ? ", turning from -0.5 rad" : ", turning from 0.5 rad");
+      EdgeMotion m;
+      m.q_start = Eigen::Quaterniond(Eigen::AngleAxisd(-0.5 * sign, Eigen::Vector3d::UnitZ()));
+      m.R_start = m.q_start.toRotationMatrix();
+      m.axis_R = sign * Eigen::Vector3d::UnitZ();
+      m.angle = angle;
+      m.X_end = m.pose(1.0);
+      double first = kInf;  // the dense check's first colliding state
+      for (int k = 0; k <= 20000 && !(first < kInf); ++k) {
+        if (mdd.collides(m.pose(k / 20000.0))) first = k / 20000.0;
+      }
+      ASSERT_LT(first, 1.0) << what << ": the robot never touches the obstacle";
+      for (int k = 0; k <= 8; ++k)
+        EXPECT_FALSE(mdd.collides(m.pose(k / 8.0))) << what << ": probe state " << k << " / 8";
+      EXPECT_TRUE(mdd.checkEdge(m, EdgeQuery::kValidity).collides) << what << ": first colliding state t = " << first;
+      const EdgeContact contact = mdd.checkEdge(m, EdgeQuery::kFirstContact);
+      EXPECT_TRUE(contact.collides) << what;
+      EXPECT_LE(contact.fraction, first) << what;
+      // Near t = 7/16 (9/16 the other way), less the tip's and the obstacle's half widths over the tip's speed.
+      EXPECT_GT(contact.fraction, sign > 0 ? 0.35 : 0.45) << what;
+    }
+  }
 }
 
 }  // namespace

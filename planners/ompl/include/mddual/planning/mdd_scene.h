@@ -62,7 +62,9 @@
 //      orientation R(tm), swept from p(ta) along v against piece j with toi
 //      (intersect when v = 0). No contact: the pair is free on I. A contact
 //      at a level k below the finest: I is halved and both halves checked
-//      again (their e is half, so they use level k + 1 or finer). A contact
+//      again (their e is at most half, plus the round-off part below, so
+//      they soon reach level k + 1 or finer; the level is always one whose
+//      enlargement covers e, so how soon is a matter of speed). A contact
 //      at the finest level at distance d along v: the edge collides, with a
 //      first contact no earlier than ta + (tb - ta) d / |v| (ta when v = 0).
 //      Every (robot piece, world piece, time) is covered by the root triple

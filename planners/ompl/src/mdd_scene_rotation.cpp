@@ -13,8 +13,9 @@ namespace {
 
 using detail::kInf;
 /// e(N, I) is computed times (1 + kGrowthSafety), plus kSlerpRoundoffRel
-/// times N's largest distance from the body origin: OMPL's slerp between states whose quaternion norms are within 1e-9
-/// of 1 differs from EdgeMotion's rotation by about that much (see the header).
+/// times N's largest distance from the body origin: OMPL's slerp between
+/// states whose quaternion norms are within 1e-9 of 1 differs from
+/// EdgeMotion's rotation by about that much (see the header).
 constexpr double kGrowthSafety = 1e-6;
 constexpr double kSlerpRoundoffRel = 1e-8;
 /// Which part of a triple to split: its interval is halved when e exceeds
@@ -37,7 +38,7 @@ constexpr double kBothSplitRatio = 2.0;
 /// A time interval [ta, tb] of the edge and the pose the triples on it use.
 struct Interval {
   double ta = 0.0, tb = 1.0;
-  Eigen::Isometry3d X_WM;   ///< orientation R(tm) (tm the middle), position p(ta)
+  Eigen::Isometry3d X_WI;   ///< orientation R(tm) (tm the middle), position p(ta)
   Eigen::Vector3d v_W;      ///< p(tb) - p(ta)
   double half_angle = 0.0;  ///< (tb - ta) / 2 * angle
   double sin_half = 0.0;    ///< sin(half_angle)
@@ -62,7 +63,7 @@ bool later(const Triple& a, const Triple& b) {
 
 /// partSweep with sin(half_angle) given (computed once per interval).
 PartSweep partSweepWithSin(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
-                           double h, double sin_h, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W) {
+                           double h, double sin_h, const Eigen::Isometry3d& X_WI, const Eigen::Vector3d& v_W) {
   // With c = centre_R, x = c + y (|y| <= radius) and k = axis x c (|k| =
   // dist(c, axis)), a point's displacement from its place at R(tm) is
   //   Rot(axis, a) x - x = sin(a) k - (1 - cos a) c_perp + (Rot(axis, a) y - y)
@@ -81,15 +82,15 @@ PartSweep partSweepWithSin(const Eigen::Vector3d& centre_R, double radius, doubl
   const double arc = h * std::min(rho, to_axis + radius) * (1.0 + kGrowthSafety);
   const double chord = (h * radius + (0.5 * h * h + h * h * h / 6.0) * to_axis) * (1.0 + kGrowthSafety);
   PartSweep out;
-  out.X_WN = X_WM;
+  out.X_WR_start = X_WI;
   out.v_W = v_W;
   out.any = any;
   if (!(chord < arc)) {
     out.across = arc;
     return out;
   }
-  const Eigen::Vector3d k_W = X_WM.linear() * k_R;
-  out.X_WN.translation() -= sin_h * k_W;
+  const Eigen::Vector3d k_W = X_WI.linear() * k_R;
+  out.X_WR_start.translation() -= sin_h * k_W;
   out.v_W += (2.0 * sin_h) * k_W;
   out.across = chord;
   return out;
@@ -97,7 +98,7 @@ PartSweep partSweepWithSin(const Eigen::Vector3d& centre_R, double radius, doubl
 
 }  // namespace
 
-Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& axis_R, double across,
+Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& axis_R, double across,
                      double any) {
   // A point x moves by Rot(axis, a) x - x, perpendicular to the axis, of
   // length at most `across`: inside a disk of that radius perpendicular to
@@ -105,7 +106,7 @@ Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eige
   // (axis . b_k)^2) (none along b_k = axis). With the axis's coordinates
   // a_i in the box's orthonormal axes, 1 - a_k^2 is the sum of the other two
   // squares: no cancellation (sqrt(1 - a_k^2) gave 1e-8 for a_k = 1).
-  Obb box = box_R.transformed(X_WM, any);
+  Obb box = box_R.transformed(X_WR, any);
   const Eigen::Vector3d a = box_R.axes_F.transpose() * axis_R;
   for (int k = 0; k < 3; ++k) {
     const double i = a[(k + 1) % 3], j = a[(k + 2) % 3];
@@ -115,8 +116,8 @@ Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eige
 }
 
 PartSweep partSweep(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
-                    double half_angle, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W) {
-  return partSweepWithSin(centre_R, radius, rho, axis_R, half_angle, std::sin(half_angle), X_WM, v_W);
+                    double half_angle, const Eigen::Isometry3d& X_WI, const Eigen::Vector3d& v_W) {
+  return partSweepWithSin(centre_R, radius, rho, axis_R, half_angle, std::sin(half_angle), X_WI, v_W);
 }
 
 void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance,
@@ -147,10 +148,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     Interval I;
     I.ta = ta;
     I.tb = tb;
-    I.X_WM = Eigen::Isometry3d::Identity();
-    I.X_WM.linear() = motion.orientation(0.5 * (ta + tb)).toRotationMatrix();
-    I.X_WM.translation() = motion.position(ta);
-    I.v_W = motion.position(tb) - I.X_WM.translation();
+    I.X_WI = Eigen::Isometry3d::Identity();
+    I.X_WI.linear() = motion.orientation(0.5 * (ta + tb)).toRotationMatrix();
+    I.X_WI.translation() = motion.position(ta);
+    I.v_W = motion.position(tb) - I.X_WI.translation();
     I.half_angle = 0.5 * (tb - ta) * motion.angle;
     I.sin_half = std::sin(I.half_angle);
     intervals.push_back(I);
@@ -159,14 +160,14 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   // How node N moves over I: a sweep along a segment and a growth e(N, I)
   // (the header's arc or chord, whichever grows less).
   const auto sweepOf = [&](const Bvh::Node& n, const Interval& I) {
-    return partSweepWithSin(n.centre, n.radius, n.max_norm, axis_R, I.half_angle, I.sin_half, I.X_WM, I.v_W);
+    return partSweepWithSin(n.centre, n.radius, n.max_norm, axis_R, I.half_angle, I.sin_half, I.X_WI, I.v_W);
   };
   // The robot node of the last triple bounded, posed over its interval: the
   // triples of one split share it (a world node's two children, the four
   // child pairs of a split of both), so it is computed once for them.
   struct PosedRobot {
     int rn = -1, iv = -1;
-    PartSweep sweep;
+    PartSweep sweep;       ///< how N moves over the interval (arc or chord)
     Eigen::Vector3d u_W;   ///< unit direction of sweep.v_W (zero when it is zero)
     double length = 0.0;   ///< |sweep.v_W|
     Eigen::Vector3d c_W;   ///< N's sphere centre at the start of the sweep
@@ -186,7 +187,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       posed.sweep = sweepOf(N, I);
       posed.length = posed.sweep.v_W.norm();
       posed.u_W = posed.length > 0.0 ? Eigen::Vector3d(posed.sweep.v_W / posed.length) : Eigen::Vector3d::Zero();
-      posed.c_W = posed.sweep.X_WN * N.centre;
+      posed.c_W = posed.sweep.X_WR_start * N.centre;
       posed.has_box = false;
     }
     const double e = posed.sweep.total();
@@ -194,12 +195,12 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const double length = posed.length;
     const Eigen::Vector3d& u_W = posed.u_W;
     const double slack =
-        kBvhSlackRel * (M.scale + posed.sweep.X_WN.translation().cwiseAbs().maxCoeff() + N.scale + e + length);
+        kBvhSlackRel * (M.scale + posed.sweep.X_WR_start.translation().cwiseAbs().maxCoeff() + N.scale + e + length);
     const double s = length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(u_W), 0.0, length) : 0.0;
     const double reach = r + M.radius + slack;
     if ((posed.c_W + s * u_W - M.centre).squaredNorm() > reach * reach) return kInf;
     if (!posed.has_box) {
-      posed.box_W = rotationSweptBox(N.obb, posed.sweep.X_WN, axis_R, posed.sweep.across, posed.sweep.any);
+      posed.box_W = rotationSweptBox(N.obb, posed.sweep.X_WR_start, axis_R, posed.sweep.across, posed.sweep.any);
       posed.has_box = true;
     }
     const Obb& box_W = posed.box_W;
@@ -258,7 +259,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       DirectionalInput in;
       in.a = &obstacle;
       in.b = &enlarged;
-      in.X_WB = ps.X_WN;
+      in.X_WB = ps.X_WR_start;
       in.s_W = ps.v_W / length;
       in.max_distance = length;
       in.exact_toi = first_contact && (out_leaf.finest || any_level);  // otherwise: whether to refine
@@ -273,7 +274,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       IntersectInput in;
       in.a = &obstacle;
       in.b = &enlarged;
-      in.X_WB = ps.X_WN;
+      in.X_WB = ps.X_WR_start;
       if (!intersect(in, warm).intersecting) return out_leaf;
     }
     out_leaf.hit = true;
@@ -358,7 +359,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       const double r = std::max(rn, rm);
       bool split_time = e > kTimeSplitAlways * r;
       if (!split_time && e > kTimeSplitNever * r) {
-        const Obb box_W = N.obb.transformed(ps.X_WN, 0.0);
+        const Obb box_W = N.obb.transformed(ps.X_WR_start, 0.0);
         const double length = ps.v_W.norm();
         const Eigen::Vector3d u_W = length > 0.0 ? Eigen::Vector3d(ps.v_W / length) : Eigen::Vector3d::Zero();
         double lo = 0.0, hi = 0.0;

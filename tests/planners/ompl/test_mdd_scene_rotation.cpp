@@ -10,6 +10,7 @@
 #include <random>
 
 #include "mddual/generators.h"
+#include "mddual/planning/mdd_scene.h"
 #include "mddual/scene/loaders.h"
 #include "test_support.h"
 
@@ -19,10 +20,19 @@ namespace {
 using testing::kInf;
 using testing::kPi;
 
+/// mdd_scene_rotation.cpp's kGrowthSafety and kSlerpRoundoffRel (file-local
+/// there): the growth's safety factor 1 + this, and the round-off part per
+/// unit of distance from the body origin.
+constexpr double kRotationGrowthSafety = 1e-6;
+constexpr double kRotationRoundoffRel = 1e-8;
+/// Above this half angle the chord never grows less than the arc (h / 2 +
+/// h^2 / 6 >= 1): (sqrt(33) - 3) / 2.
+const double kChordMaxHalfAngle = (std::sqrt(33.0) - 3.0) / 2.0;
+
 // rotationSweptBox: every point of the box, rotated about the axis by any
 // angle up to h (across = h times the box's largest distance from the axis,
 // the arc bound the rotating scheme uses; h up to pi / 2, a root interval's
-// half angle) and posed at X_WM, lies in the grown box; along a box axis
+// half angle) and posed at X_WR, lies in the grown box; along a box axis
 // that is the rotation axis it does not grow (only by `any`); and the growth
 // is not loose: with 0.9 of `across` some rotated point falls outside.
 TEST(RotationSweptBox, HoldsTheRotatedBoxAndDoesNotGrowAlongTheAxis) {
@@ -40,12 +50,12 @@ TEST(RotationSweptBox, HoldsTheRotatedBoxAndDoesNotGrowAlongTheAxis) {
     const double h = 0.5 * kPi * unit(rng);
     double rho = 0.0;
     for (const Eigen::Vector3d& c : box_R.corners()) rho = std::max(rho, (c - c.dot(axis_R) * axis_R).norm());
-    Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
-    X_WM.linear() = generators::randomRotation(rng);
-    X_WM.translation() = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 10.0;
+    Eigen::Isometry3d X_WR = Eigen::Isometry3d::Identity();
+    X_WR.linear() = generators::randomRotation(rng);
+    X_WR.translation() = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 10.0;
     const double any = 1e-9;
-    const Obb swept_W = rotationSweptBox(box_R, X_WM, axis_R, h * rho, any);
-    const Obb shrunk_W = rotationSweptBox(box_R, X_WM, axis_R, 0.9 * h * rho, any);
+    const Obb swept_W = rotationSweptBox(box_R, X_WR, axis_R, h * rho, any);
+    const Obb shrunk_W = rotationSweptBox(box_R, X_WR, axis_R, 0.9 * h * rho, any);
     if (k % 3 == 0) {
       const int along = k % 9 / 3;
       EXPECT_NEAR(swept_W.half[along], box_R.half[along] + any, 1e-14) << "case " << k;
@@ -57,7 +67,7 @@ TEST(RotationSweptBox, HoldsTheRotatedBoxAndDoesNotGrowAlongTheAxis) {
       const Eigen::Vector3d s = m % 2 == 0 ? Eigen::Vector3d(y.cwiseSign()) : y;
       const Eigen::Vector3d x_R = box_R.centre_F + box_R.axes_F * s.cwiseProduct(box_R.half);
       const double a = h * (2.0 * unit(rng) - 1.0);
-      const Eigen::Vector3d p_W = X_WM * (Eigen::AngleAxisd(a, axis_R) * x_R);
+      const Eigen::Vector3d p_W = X_WR * (Eigen::AngleAxisd(a, axis_R) * x_R);
       EXPECT_TRUE(swept_W.contains(p_W, 1e-12)) << "case " << k << " point " << m << ": angle " << a << " of " << h;
       escaped = escaped || !shrunk_W.contains(p_W, 1e-12);
       near_limit += std::abs(a) > 0.8 * h && s.cwiseAbs().minCoeff() == 1.0;
@@ -74,53 +84,64 @@ TEST(RotationSweptBox, HoldsTheRotatedBoxAndDoesNotGrowAlongTheAxis) {
 // partSweep: every point within `radius` of the centre, turned about the axis
 // by a = (2s - 1) h at s in [0, 1] (the interval's constant-speed rotation
 // about its middle orientation) and translated by s v, lies within the
-// growth of the point's place in the sweep (X_WN x + s v_W), with at most
+// growth of the point's place in the sweep (X_WR_start x + s v_W), with at most
 // `any` of the displacement along the axis; the growth is never more than
 // the arc bound (h times the part's largest distance from the axis); and it
 // is not loose: at 0.9 of `across` some point escapes in some case of each
 // kind. Half angles: most of them small (where the chord is taken), a
-// quarter just above 1.372 (where the arc is always taken and still within
-// 0.92 of tight: 2 sin(h / 2) / h), an eighth in (pi, 4 pi] (an extended
-// edge's root interval; the arc).
+// quarter just above kChordMaxHalfAngle ~ 1.372 (where the arc is always
+// taken and still within 0.92 of tight: 2 sin(h / 2) / h), an eighth in
+// (pi, 4 pi] (an extended edge's root interval; the arc). A fifth of the
+// parts have a `rho` below |centre| + radius (their points are drawn within
+// rho of the origin) and an axis perpendicular to the centre, so that rho
+// caps the arc's growth.
 TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
   testing::Rng rng(testing::seed() * 47);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  int chord_cases = 0, arc_cases = 0, chord_tight = 0, arc_tight = 0;
+  int chord_cases = 0, rho_capped = 0, chord_tight = 0, arc_tight = 0;
   const int kCases = 120;
   for (int k = 0; k < kCases; ++k) {
     const Eigen::Vector3d centre_R =
         (Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 2.0 - Eigen::Vector3d::Ones()) * 2.0;
     const double radius = 0.01 + 0.5 * unit(rng);
-    const Eigen::Vector3d axis_R = generators::randomUnitVector(rng);
-    const double h = k % 4 == 0   ? 1.38 + 0.07 * unit(rng)
+    const bool capped = k % 5 == 1;
+    const Eigen::Vector3d axis_R = capped
+                                       ? Eigen::Vector3d(centre_R.cross(generators::randomUnitVector(rng)).normalized())
+                                       : generators::randomUnitVector(rng);
+    const double h = k % 4 == 0   ? kChordMaxHalfAngle + 0.01 + 0.07 * unit(rng)
                      : k % 8 == 2 ? kPi * (1.0 + 3.0 * unit(rng))
                                   : 0.2 * unit(rng);
-    const double rho = centre_R.norm() + radius;
-    Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
-    X_WM.linear() = generators::randomRotation(rng);
-    X_WM.translation() = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 10.0;
+    const double rho = centre_R.norm() + (capped ? 0.3 : 1.0) * radius;
+    Eigen::Isometry3d X_WI = Eigen::Isometry3d::Identity();
+    X_WI.linear() = generators::randomRotation(rng);
+    X_WI.translation() = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) * 10.0;
     const Eigen::Vector3d v_W = Eigen::Vector3d(unit(rng), unit(rng), unit(rng)) - 0.5 * Eigen::Vector3d::Ones();
-    const PartSweep ps = partSweep(centre_R, radius, rho, axis_R, h, X_WM, v_W);
+    const PartSweep ps = partSweep(centre_R, radius, rho, axis_R, h, X_WI, v_W);
     const double to_axis = axis_R.cross(centre_R).norm();
-    EXPECT_LE(ps.across, h * std::min(rho, to_axis + radius) * (1.0 + 1e-6) * (1.0 + 1e-15)) << "case " << k;
+    const double arc = h * std::min(rho, to_axis + radius) * (1.0 + kRotationGrowthSafety);
+    EXPECT_LE(ps.across, arc * (1.0 + 1e-15)) << "case " << k;
+    EXPECT_EQ(ps.any, kRotationRoundoffRel * rho) << "case " << k;
     const bool chord = ps.v_W != v_W;
-    if (h >= 1.38) {  // h / 2 + h^2 / 6 >= 1: the arc
+    if (h >= kChordMaxHalfAngle) {
       EXPECT_FALSE(chord) << "case " << k << ": the chord at h " << h;
     }
     chord_cases += chord;
-    arc_cases += !chord;
-    const Eigen::Vector3d axis_W = X_WM.linear() * axis_R;
+    rho_capped += !chord && rho < to_axis + radius;
+    const Eigen::Vector3d axis_W = X_WI.linear() * axis_R;
     double worst = 0.0;  // largest displacement over `across`
     for (int m = 0; m < 400; ++m) {
-      const Eigen::Vector3d d = generators::randomUnitVector(rng);
-      // On the sphere three times in four (the farthest points), inside otherwise.
-      const Eigen::Vector3d y = d * radius * (m % 4 == 0 ? unit(rng) : 1.0);
+      // On the sphere three times in four (the farthest points), inside
+      // otherwise; within rho of the origin (drawn again until it is).
+      Eigen::Vector3d y;
+      do {
+        y = generators::randomUnitVector(rng) * radius * (m % 4 == 0 ? unit(rng) : 1.0);
+      } while ((centre_R + y).norm() > rho);
       // The interval's ends a quarter of the time (where the chord's error peaks).
       const double s = m % 4 == 1 ? 0.0 : m % 4 == 2 ? 1.0 : unit(rng);
       const Eigen::Vector3d x_R = centre_R + y;
       const Eigen::Vector3d p_W =
-          X_WM.translation() + s * v_W + X_WM.linear() * (Eigen::AngleAxisd((2.0 * s - 1.0) * h, axis_R) * x_R);
-      const Eigen::Vector3d swept_W = ps.X_WN * x_R + s * ps.v_W;
+          X_WI.translation() + s * v_W + X_WI.linear() * (Eigen::AngleAxisd((2.0 * s - 1.0) * h, axis_R) * x_R);
+      const Eigen::Vector3d swept_W = ps.X_WR_start * x_R + s * ps.v_W;
       const Eigen::Vector3d off_W = p_W - swept_W;
       const double along = std::abs(off_W.dot(axis_W));
       EXPECT_LE(off_W.norm(), ps.total() + 1e-12)
@@ -131,34 +152,38 @@ TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
     }
     (chord ? chord_tight : arc_tight) += worst > 0.9;
   }
-  // Both kinds occur and neither bound is loose in every case.
+  // The chord is the common case, rho does cap some arcs, and neither bound
+  // is loose in every case.
   EXPECT_GT(chord_cases, kCases / 2);
-  EXPECT_GE(arc_cases, kCases * 3 / 8);
+  EXPECT_GT(rho_capped, 0);
   EXPECT_GT(chord_tight, 0);
   EXPECT_GT(arc_tight, 0);
 }
 
 // partSweep in closed form. A small part far from the axis takes the chord:
 // start shifted by -sin(h) k, sweep v + 2 sin(h) k, growth h r + (h^2 / 2 +
-// h^3 / 6) |k| (times 1 + 1e-6), k = axis x centre; one on the axis keeps
-// the arc (no sweep of its own, growth h r).
+// h^3 / 6) |k| (times 1 + kRotationGrowthSafety), k = axis x centre. A
+// large part over a half angle of 1 keeps the arc, capped by rho (centre (1,
+// 0, 0), radius 0.5, rho 1: the arc grows by 1, the chord would by 0.5 + 2 /
+// 3): no sweep of its own, growth h rho.
 TEST(PartSweep, ClosedFormChordAndArc) {
   const double h = 0.01, r = 0.01;
   const Eigen::Vector3d axis_R = Eigen::Vector3d::UnitZ();
-  Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();
-  X_WM.translation() = Eigen::Vector3d(5.0, 0.0, 0.0);
+  Eigen::Isometry3d X_WI = Eigen::Isometry3d::Identity();
+  X_WI.translation() = Eigen::Vector3d(5.0, 0.0, 0.0);
   const Eigen::Vector3d v_W(0.0, 0.0, 1.0);
-  const PartSweep far = partSweep(Eigen::Vector3d(1.0, 0.0, 0.0), r, 1.0 + r, axis_R, h, X_WM, v_W);
-  EXPECT_NEAR(far.across, (h * r + (0.5 * h * h + h * h * h / 6.0)) * (1.0 + 1e-6), 1e-17);
-  EXPECT_NEAR(far.any, 1e-8 * (1.0 + r), 1e-20);
+  const PartSweep far = partSweep(Eigen::Vector3d(1.0, 0.0, 0.0), r, 1.0 + r, axis_R, h, X_WI, v_W);
+  EXPECT_NEAR(far.across, (h * r + (0.5 * h * h + h * h * h / 6.0)) * (1.0 + kRotationGrowthSafety), 1e-17);
+  EXPECT_NEAR(far.any, kRotationRoundoffRel * (1.0 + r), 1e-20);
   EXPECT_LT(far.across, 0.02 * h * (1.0 + r));  // the arc's growth would be h (1 + r)
-  EXPECT_TRUE(far.X_WN.translation().isApprox(Eigen::Vector3d(5.0, -std::sin(h), 0.0), 1e-15));
-  EXPECT_TRUE(far.X_WN.linear().isApprox(Eigen::Matrix3d::Identity(), 1e-15));
+  EXPECT_TRUE(far.X_WR_start.translation().isApprox(Eigen::Vector3d(5.0, -std::sin(h), 0.0), 1e-15));
+  EXPECT_TRUE(far.X_WR_start.linear().isApprox(Eigen::Matrix3d::Identity(), 1e-15));
   EXPECT_TRUE(far.v_W.isApprox(Eigen::Vector3d(0.0, 2.0 * std::sin(h), 1.0), 1e-15));
-  const PartSweep on_axis = partSweep(Eigen::Vector3d(0.0, 0.0, 2.0), r, 2.0 + r, axis_R, h, X_WM, v_W);
-  EXPECT_NEAR(on_axis.across, h * r * (1.0 + 1e-6), 1e-19);
-  EXPECT_EQ(on_axis.v_W, v_W);
-  EXPECT_EQ(on_axis.X_WN.translation(), X_WM.translation());
+  const PartSweep large = partSweep(Eigen::Vector3d(1.0, 0.0, 0.0), 0.5, 1.0, axis_R, 1.0, X_WI, v_W);
+  EXPECT_NEAR(large.across, 1.0 + kRotationGrowthSafety, 1e-15);
+  EXPECT_EQ(large.any, kRotationRoundoffRel);
+  EXPECT_EQ(large.v_W, v_W);
+  EXPECT_EQ(large.X_WR_start.translation(), X_WI.translation());
 }
 
 // checkEdge where only the arc's bulge beyond the chord touches: a robot

@@ -98,9 +98,9 @@
 //    e is computed with a safety factor (1 + 1e-6) and 1e-8 times N's largest
 //    distance from the body origin added, for the round-off of OMPL's
 //    quaternion slerp (states stored with norms within 1e-9 of 1: a small
-//    rotation of any axis; the box grows by that part along each of its axes). The
-//    enlargement at the leaves is at least delta / 2^refinement_levels,
-//    which keeps false alarms to clearances below it.
+//    rotation about any axis; the box grows by that part along each of its
+//    axes). The enlargement at the leaves is at least delta /
+//    2^refinement_levels, which keeps false alarms to clearances below it.
 //    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
 //    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
 //    which the swept volumes meet; at the true first contact t* of a pair in
@@ -436,7 +436,7 @@ class MddScene {
 /// piece within sqrt(3) delta of `piece`.
 scene::Piece enlargePiece(const scene::Piece& piece, double delta);
 
-/// The oriented box box_R (body frame R) seen at X_WM, grown to hold every
+/// The oriented box box_R (body frame R) seen at X_WR, grown to hold every
 /// point of it displaced perpendicular to the unit axis axis_R by at most
 /// `across` (>= 0; a rotation about the axis that moves no point of the box
 /// by more, or the chord sweep's residual, see partSweep), and then by `any`
@@ -444,17 +444,18 @@ scene::Piece enlargePiece(const scene::Piece& piece, double delta);
 /// (axis_R . b_k)^2) + any, b_k the box's axis (the support of a disk of
 /// radius `across` perpendicular to the axis). The rotating scheme's robot
 /// volume over a time interval (see above).
-Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& axis_R, double across,
+Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& axis_R, double across,
                      double any);
 
 /// How a part of the robot moves over a time interval of a rotating edge, as
-/// a straight sweep plus a growth (see the file comment, "Chord sweep"): the part's
-/// points at time ta + s (tb - ta), s in [0, 1], lie within `across` (a
-/// displacement perpendicular to the axis) plus `any` (any direction) of the
-/// part at pose X_WN translated by s v_W.
+/// a straight sweep plus a growth (see the file comment, "Chord sweep"): the
+/// part's points at time ta + s (tb - ta), s in [0, 1], lie within `across`
+/// (a displacement perpendicular to the axis) plus `any` (any direction) of
+/// the part with the body frame R at X_WR_start, translated by s v_W.
 struct PartSweep {
-  /// Orientation R(tm), the sweep's start position (p(ta), or shifted by the chord).
-  Eigen::Isometry3d X_WN = Eigen::Isometry3d::Identity();
+  /// The body frame's pose at the sweep's start: orientation R(tm),
+  /// position p(ta) (the arc) or p(ta) - sin(h) R(tm) k (the chord).
+  Eigen::Isometry3d X_WR_start = Eigen::Isometry3d::Identity();
   /// The sweep over the interval (world units).
   Eigen::Vector3d v_W = Eigen::Vector3d::Zero();
   /// Growth perpendicular to the rotation axis (world units).
@@ -465,13 +466,14 @@ struct PartSweep {
 };
 
 /// The PartSweep of the points within `radius` of centre_R (body frame) over
-/// an interval whose middle pose is X_WM (orientation R(tm), position p(ta)),
-/// whose translation is v_W = p(tb) - p(ta) and whose rotation about the
-/// unit axis_R turns by half_angle (>= 0) either way of
-/// R(tm); `rho` (>= 0) bounds the points' distance from the body origin (it
-/// gives the slerp round-off part and caps the arc's growth). Of the two sweeps in the header's argument (the
-/// arc as a disk growth, the chord as a sweep), the one with less growth.
+/// an interval [ta, tb] whose pose X_WI has the middle orientation R(tm) and
+/// the start position p(ta), whose translation is v_W = p(tb) - p(ta) and
+/// whose rotation about the unit axis_R turns by half_angle (>= 0) either
+/// way of R(tm); `rho` (>= 0) bounds the points' distance from the body
+/// origin (it gives the slerp round-off part and caps the arc's growth). Of
+/// the two sweeps of the file comment's argument (the arc as a disk growth,
+/// the chord as a sweep), the one with less growth.
 PartSweep partSweep(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
-                    double half_angle, const Eigen::Isometry3d& X_WM, const Eigen::Vector3d& v_W);
+                    double half_angle, const Eigen::Isometry3d& X_WI, const Eigen::Vector3d& v_W);
 
 }  // namespace mddual::planning

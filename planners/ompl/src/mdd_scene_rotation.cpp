@@ -61,6 +61,11 @@ bool later(const Triple& a, const Triple& b) {
   return a.bound > b.bound;
 }
 
+/// v / length, or zero when length (|v|) is zero.
+Eigen::Vector3d unitOrZero(const Eigen::Vector3d& v, double length) {
+  return length > 0.0 ? Eigen::Vector3d(v / length) : Eigen::Vector3d::Zero();
+}
+
 /// partSweep with sin(half_angle) given (computed once per interval).
 PartSweep partSweepWithSin(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
                            double h, double sin_h, const Eigen::Isometry3d& X_WI, const Eigen::Vector3d& v_W) {
@@ -186,7 +191,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       posed.iv = iv;
       posed.sweep = sweepOf(N, I);
       posed.length = posed.sweep.v_W.norm();
-      posed.u_W = posed.length > 0.0 ? Eigen::Vector3d(posed.sweep.v_W / posed.length) : Eigen::Vector3d::Zero();
+      posed.u_W = unitOrZero(posed.sweep.v_W, posed.length);
       posed.c_W = posed.sweep.X_WR_start * N.centre;
       posed.has_box = false;
     }
@@ -307,7 +312,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
         const Interval& H = intervals[static_cast<std::size_t>(half)];
         double until = 0.0;
         if (!(bound(rn, wn, half, &until) < kInf)) continue;
-        const LeafResult r = leafQuery(i, j, H, sweepOf(robot_tree_.node(rn), H));
+        const LeafResult r = leafQuery(i, j, H, posed.sweep);  // bound() just posed (rn, half)
         if (!r.hit) continue;
         if (r.finest || trueContact(i, j, r.fraction)) {
           best = r.fraction;  // not a first contact: only `collides` is meaningful in this mode
@@ -343,7 +348,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const Bvh::Node& N = robot_tree_.node(t.robot);
     const Bvh::Node& M = worldNode(t.world);
     const Interval I = intervals[static_cast<std::size_t>(t.interval)];  // a copy: intervals may grow
-    const PartSweep ps = sweepOf(N, I);
+    // The sweep bound() computed when the triple was pushed, if still posed.
+    const PartSweep ps = posed.rn == t.robot && posed.iv == t.interval ? posed.sweep : sweepOf(N, I);
     const double e = ps.total();
     if (!N.isLeaf() || !M.isLeaf()) {
       // Split the interval when e is not small against the nodes that have
@@ -361,7 +367,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       if (!split_time && e > kTimeSplitNever * r) {
         const Obb box_W = N.obb.transformed(ps.X_WR_start, 0.0);
         const double length = ps.v_W.norm();
-        const Eigen::Vector3d u_W = length > 0.0 ? Eigen::Vector3d(ps.v_W / length) : Eigen::Vector3d::Zero();
+        const Eigen::Vector3d u_W = unitOrZero(ps.v_W, length);
         double lo = 0.0, hi = 0.0;
         split_time = !obbCastIntervalFaces(M.obb, box_W, u_W, length, 0.0, &lo, &hi);
       }

@@ -385,17 +385,28 @@ int ExactEnumerator::walkArc(int e, int from_face, int vb) {
       // lost (never in exact arithmetic); redo the arc by testing.
       if (fx < 0.0 && fx < -defaults::kPdWalkSlackRel * d.norm()) return walkArcByTesting(e, from_face, vb);
       double s = pseudoAngle(-ft, fx);
-      if (s >= 3.0) s = 0.0;  // x . d < 0 and decreasing: leave now
+      // x . d < 0 and decreasing: the crossing is behind x (by round-off), so
+      // the region is left here, at x (best_fx = 0 keeps x, see below).
+      const bool behind = s >= 3.0;
+      if (behind) s = 0.0;
       if (s < best) {
         best = s;
         best_k = k;
-        best_fx = fx;
-        best_ft = ft;
+        best_fx = behind ? 0.0 : fx;
+        best_ft = behind ? -1.0 : ft;
       }
     }
     stats_->arc_pairs += nbrs.size();
     if (best_k < 0) return vb;  // the rest of the arc lies in vb's region
     // Cross into the neighbour's region: an EE facet of M with normal x'.
+    // A crossing behind x is taken at x itself. Moving back to it is a step
+    // of angle atan(|x . d| / |tau . d|): tiny in general, but for an edge of
+    // B within round-off of parallel to this edge of A (x . d and tau . d
+    // both ~1e-12 |d|: a prism 1e6 from the origin, whose parallel edges the
+    // input's rounding tilts) it is tens of degrees, and the walk then lost
+    // its region (regression IdenticalPentagonalPrismsFarFromTheOrigin).
+    // Staying at x offers the plane (x, x . (a - b_vb)), which is h_M(x) >= PD
+    // up to the round-off by which vb is not the support at x.
     const double r = std::sqrt(best_fx * best_fx + best_ft * best_ft);
     x = ((-best_ft / r) * x + (best_fx / r) * tau).normalized();
     tau = dir.cross(x);

@@ -82,5 +82,31 @@ TEST(PenetrationRegressions, IdenticalHexagonalPrisms) {
   EXPECT_NEAR(hi - lo, exact.depth, 1e-12);
 }
 
+// Found by test_far_from_origin (IdenticalAndShiftedCopies, MDDUAL_SWEEP_SEED=1):
+// a pentagonal prism of size ~128 about 1.2e6 from the origin against an
+// identical copy. The depth and normal were right (the brute force's to all
+// digits), but the exact method's Gaussian-map walk lost its region on one arc
+// and redid it by testing every edge of B (stats.walk_fallbacks = 1), which
+// never happens in exact arithmetic: a lateral edge of B within 1e-12 of
+// parallel to the arc's edge of A gave a crossing "behind" the walk's point,
+// and the walk stepped back to it, tens of degrees along the arc.
+TEST(PenetrationRegressions, IdenticalPentagonalPrismsFarFromTheOrigin) {
+  const Points a = {{445853.89464830677, 432701.69839414355, 1119027.382596642},
+                    {445917.81859785813, 432682.6299329961, 1119136.626005886},
+                    {445930.2282769856, 432756.62027509446, 1119142.2794935},
+                    {445866.3043274342, 432775.6887362419, 1119033.0360842561},
+                    {446022.49440946395, 432707.6716408849, 1119079.745828771},
+                    {445958.5704599126, 432726.7401020323, 1118970.5024195272},
+                    {445930.99753680656, 432791.1653628535, 1118997.8822015133},
+                    {445994.921486358, 432772.09690170607, 1119107.125610757},
+                    {445974.84220374026, 432652.3780133517, 1119097.9780756421},
+                    {445910.91825418884, 432671.4464744991, 1118988.7346663985}};
+  const PenetrationResult exact = pdOf(a, a, PenetrationMethod::kExact);
+  const PenetrationResult brute = pdOf(a, a, PenetrationMethod::kBruteForce);
+  ASSERT_EQ(exact.status, PenetrationStatus::kPenetrating);
+  EXPECT_NEAR(exact.depth, brute.depth, 1e-9);
+  EXPECT_EQ(exact.stats.walk_fallbacks, 0);
+}
+
 }  // namespace
 }  // namespace mddual

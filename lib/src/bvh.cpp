@@ -698,24 +698,34 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
     if (!castInterval(A.obb, pb.obb, u, lim, slack, false, &lo, &hi)) return kInf;
     return lo;
   };
+  // Nearest first (a heap on the bounds) for the first contact. Without
+  // first_contact any contact ends the search and a free sweep visits every
+  // pair whose volumes meet in any order, so the pairs go on a stack (depth
+  // first): no heap work, and a leaf is reached after a few steps
+  // (benchmarks/planning --mdd-only, bugtrap translating checkMotion without
+  // the probe states: 23 us -> 14 us; twistycool, cubicles_mesh and the
+  // apartment 2% to 28% less with them).
+  const bool depth_first = !options.first_contact;
   using Entry = Scratch::Entry;
   const auto later = [](const Entry& x, const Entry& y) { return x.bound > y.bound; };
-  std::vector<Entry>& heap = s->heap;
+  std::vector<Entry>& heap = s->heap;  // a stack when depth_first
   heap.clear();
+  const auto enqueue = [&](const Entry& e) {
+    heap.push_back(e);
+    if (!depth_first) std::push_heap(heap.begin(), heap.end(), later);
+  };
   const auto push = [&](int na, int nb) {
     const double lb = bound(na, nb);
-    if (lb < best && lb <= max_distance) {
-      heap.push_back(Entry{lb, na, nb, false});
-      std::push_heap(heap.begin(), heap.end(), later);
-    }
+    if (lb < best && lb <= max_distance) enqueue(Entry{lb, na, nb, false});
   };
   push(a.root(), b.root());
   while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), later);
+    if (!depth_first) std::pop_heap(heap.begin(), heap.end(), later);
     Entry e = heap.back();
     heap.pop_back();
     // Every remaining pair is bounded below by e.bound: none comes before
     // the best contact (or, with a tolerance, before it less stop_within).
+    // (Depth first, best is +infinity until the contact that ends the search.)
     if (e.bound >= best - options.stop_within) {
       hit.lower_bound = std::min(best, e.bound);
       break;
@@ -757,10 +767,7 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
       } catch (const Error&) {
         // Keep the boxes' bound.
       }
-      if (e.bound < best) {
-        heap.push_back(e);
-        std::push_heap(heap.begin(), heap.end(), later);
-      }
+      if (e.bound < best) enqueue(e);
       continue;
     }
     if (descendA(A, B)) {

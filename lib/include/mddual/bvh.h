@@ -254,19 +254,19 @@ using CastLeafFn = FunctionRef<double(int piece_a, int piece_b, double limit)>;
 /// Branch and bound on the first contact of set b (placed at X_AB in a's
 /// frame) translating by s u_A, s in [0, max_distance] (u_A nonzero; the
 /// distance is measured along u_A / |u_A|; max_distance >= 0, may be
-/// +infinity) against set a. Node pairs are visited nearest first by a lower
-/// bound on the contact distance of every pair below them: the first distance
-/// at which their swept volumes may meet (spheres, axis-aligned boxes, and the
-/// oriented boxes on their six face axes: an interval that holds the exact
-/// one of obbCastInterval, for less work), raised to the toi of their hulls
-/// when both have one; a pair whose bound is not below the best contact so far
-/// is pruned, and the leaf function is called with limit = the best contact so
-/// far (max_distance at first). Returns the smallest leaf distance over all
-/// pairs whose volumes meet within max_distance (the same as calling leaf on
-/// every pair when leaf reports only contacts of the pieces), or with
-/// first_contact = false the first one found. Throws InvalidInputError for a
-/// zero or non-finite u_A, a negative or NaN max_distance or
-/// options.stop_within.
+/// +infinity) against set a. Node pairs are bounded below by the first
+/// distance at which their swept volumes may meet (spheres, axis-aligned
+/// boxes, and the oriented boxes on their six face axes: an interval that
+/// holds the exact one of obbCastInterval, for less work), raised to the toi
+/// of their hulls when both have one, and visited nearest first by that bound
+/// (depth first with first_contact = false); a pair whose bound is not below
+/// the best contact so far is pruned, and the leaf function is called with
+/// limit = the best contact so far (max_distance at first). Returns the
+/// smallest leaf distance over all pairs whose volumes meet within
+/// max_distance (the same as calling leaf on every pair when leaf reports only
+/// contacts of the pieces), or with first_contact = false the first one found.
+/// Throws InvalidInputError for a zero or non-finite u_A, a negative or NaN
+/// max_distance or options.stop_within.
 CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& u_A,
                   double max_distance, CastLeafFn leaf, const CastOptions& options = CastOptions(),
                   BvhStats* stats = nullptr);

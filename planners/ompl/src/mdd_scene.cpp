@@ -376,15 +376,19 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
 
 bool MddScene::probeStatesCollide(const EdgeMotion& motion, EdgeContact* out) const {
   // The end, then interior states in OMPL's bisection order (the middle, the
-  // quarters, the eighths). A translation edge takes the first two only: its
-  // exact sweep costs a few state tests. A rotating edge takes all eight:
-  // its search costs tens of them, and an invalid edge's colliding states
-  // are often found by a few samples (benchmarks/planning, --mdd-only,
-  // rotating checkMotion against the end and middle only: maze_planar 0.5x
-  // to 0.8x the time, the apartment 0.9x, bugtrap, twistycool and the
-  // cubicles unchanged within the noise; sixteen states: 5% to 30% slower
-  // than eight on four of the five mesh configs).
-  static constexpr std::array<double, 8> kProbes = {1.0, 0.5, 0.25, 0.75, 0.125, 0.375, 0.625, 0.875};
+  // quarters). A translation edge takes the first two only: its exact sweep
+  // costs a few state tests. A rotating edge takes all four: its search
+  // costs tens of them, and an invalid edge's colliding states are often
+  // found by a few samples. Measured (benchmarks/planning, --mdd-only, rotating
+  // checkMotion): against the end and middle only, eight states (adding the
+  // eighths) took 0.5x to 0.8x the time on maze_planar, 0.9x on the
+  // apartment, the same on bugtrap, twistycool and the cubicles; four states
+  // against eight (393b6f4, 600 edges, two rounds alternating): bugtrap 5% to
+  // 9% less time, cubicles_mesh 9% to 16%, the mesh and trap scenes and
+  // blobs up to 15%, twistycool and the apartment within the noise,
+  // maze_planar and planar 5% less for edges up to the range and 7% to 9%
+  // more at the range; sixteen states were 5% to 30% slower than eight.
+  static constexpr std::array<double, 4> kProbes = {1.0, 0.5, 0.25, 0.75};
   const std::size_t count = motion.rotates() ? kProbes.size() : 2;
   PieceContact which;
   for (std::size_t k = 0; k < count; ++k) {
@@ -407,7 +411,7 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
   const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
   // Validity: a few states first (the end, the middle; on rotating edges
-  // also the quarters and eighths). Invalid edges often collide there, and a
+  // also the quarters). Invalid edges often collide there, and a
   // state test (intersect, early exit) is cheaper than the edge's search.
   if (query == EdgeQuery::kValidity && probeStatesCollide(motion, &out)) return out;
   if (!motion.rotates()) {

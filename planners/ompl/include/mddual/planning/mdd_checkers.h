@@ -93,7 +93,7 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     (copy of s1, 0). On a valid edge lastValid is not touched.
 ///   - s1 is not assumed valid: an edge whose start collides is invalid.
 ///   - checkMotion(s1, s2) (validity only) first tests s2, the middle state
-///     and, on rotating edges, the quarters and eighths (mddual::intersect,
+///     and, on rotating edges, the quarters (mddual::intersect,
 ///     early exit), as OMPL's discrete validator orders its samples: most
 ///     invalid edges end after a few cheap state tests.
 ///     Only then the sweep (rotating edges: sub-edges in bisection order, and a

@@ -115,7 +115,7 @@
 //    contact or when the true pieces of a refuted pair intersect at the
 //    refuted sweep's contact time (a state of the edge that collides).
 //    lastValid (EdgeQuery::kLastValid): the verdict as in validity only (a
-//    colliding probe state, the end, middle, quarters or eighths, settles it
+//    colliding probe state, the end, middle or quarters, settles it
 //    first); on a colliding edge, the first-contact queue with a leaf
 //    contact at ANY level taken as a bound (piece i enlarged at level k
 //    holds the true piece over its interval, so its sweep's contact fraction
@@ -337,7 +337,7 @@ class MddScene {
   /// The robot's motion along an edge (see the file comment and EdgeQuery).
   /// kValidity, and kLastValid on rotating edges, first test a few states
   /// with the true pieces (probeStatesCollide: the end and the middle, on
-  /// rotating edges also the quarters and eighths; a collision there settles
+  /// rotating edges also the quarters; a collision there settles
   /// the verdict); kValidity then stops at any contact. The three queries agree on `collides`.
   /// fraction_tolerance (kLastValid only, in [0, 1]): the search for the
   /// bound stops once it is within this much (a fraction of the edge) of the
@@ -395,7 +395,7 @@ class MddScene {
   /// the level its triple reached touches.
   void checkRotating(const EdgeMotion& motion, EdgeQuery query, double fraction_tolerance, EdgeContact* out) const;
   /// Whether the true robot collides at one of the edge's probe states: the
-  /// end and the middle; on a rotating edge also the quarters and eighths.
+  /// end and the middle; on a rotating edge also the quarters.
   bool probeStatesCollide(const EdgeMotion& motion, EdgeContact* out) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
   double setMargin(int set) const;

@@ -723,9 +723,10 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
     if (!depth_first) std::pop_heap(heap.begin(), heap.end(), later);
     Entry e = heap.back();
     heap.pop_back();
-    // Every remaining pair is bounded below by e.bound: none comes before
-    // the best contact (or, with a tolerance, before it less stop_within).
-    // (Depth first, best is +infinity until the contact that ends the search.)
+    // Nearest first, every remaining pair is bounded below by e.bound: none
+    // comes before the best contact (or, with a tolerance, before it less
+    // stop_within). Depth first, best is +infinity until the contact that
+    // ends the search, so this never fires.
     if (e.bound >= best - options.stop_within) {
       hit.lower_bound = std::min(best, e.bound);
       break;

@@ -105,7 +105,9 @@ TEST(PenetrationRegressions, IdenticalPentagonalPrismsFarFromTheOrigin) {
   const PenetrationResult brute = pdOf(a, a, PenetrationMethod::kBruteForce);
   ASSERT_EQ(exact.status, PenetrationStatus::kPenetrating);
   EXPECT_NEAR(exact.depth, brute.depth, 1e-9);
+  EXPECT_GT(exact.stats.ee_facets, 0);  // the walk ran (pruning did not skip every arc)
   EXPECT_EQ(exact.stats.walk_fallbacks, 0);
+  EXPECT_EQ(exact.stats.brute_fallbacks, 0);
 }
 
 }  // namespace

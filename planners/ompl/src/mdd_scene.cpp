@@ -381,7 +381,7 @@ bool MddScene::probeStatesCollide(const EdgeMotion& motion, EdgeContact* out) co
   // costs tens of them, and an invalid edge's colliding states are often
   // found by a few samples. Measured (benchmarks/planning, --mdd-only, rotating
   // checkMotion): against the end and middle only, eight states (adding the
-  // eighths) took 0.5x to 0.8x the time on maze_planar, 0.9x on the
+  // quarters and eighths) took 0.5x to 0.8x the time on maze_planar, 0.9x on the
   // apartment, the same on bugtrap, twistycool and the cubicles; four states
   // against eight (393b6f4, 600 edges, two rounds alternating): bugtrap 5% to
   // 9% less time, cubicles_mesh 9% to 16%, the mesh and trap scenes and

@@ -253,14 +253,15 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
 TEST(MddSceneRotation, ValidityTestsTheProbeStatesBeforeAnySearch) {
   // A rotating edge is first tested at its end, middle and quarters (in
   // that order): when one collides, kValidity answers with it and no
-  // triple is searched; otherwise the search runs.
+  // triple is searched; otherwise the search runs, also on edges whose
+  // eighths collide (probed too until e26a0be; guarded below).
   const examples::ExampleScene& scene = testing::allScenes()[8];
   ASSERT_EQ(scene.name, "trap");
   const MddScene mdd(scene.robot, scene.world);
   testing::Rng rng(testing::seed() * 109);
   const std::array<double, 4> probes = {1.0, 0.5, 0.25, 0.75};
-  int by_probe = 0, by_search = 0;
-  for (int e = 0; e < 200 * testing::scale(); ++e) {
+  int by_probe = 0, by_search = 0, at_an_eighth = 0;
+  for (int e = 0; e < 1500 * testing::scale(); ++e) {
     const EdgeMotion m = randomRotatingEdge(scene, mdd, rng);
     double first_probe = kInf;
     for (const double t : probes) {
@@ -278,11 +279,21 @@ TEST(MddSceneRotation, ValidityTestsTheProbeStatesBeforeAnySearch) {
     } else {
       by_search += any.collides;
       EXPECT_GT(any.sub_edges, 0) << "edge " << e;
+      for (const double t : {0.125, 0.375, 0.625, 0.875}) {
+        if (mdd.collides(m.pose(t))) {
+          ++at_an_eighth;
+          break;
+        }
+      }
     }
   }
-  // Both ways of finding a collision occur.
+  // Both ways of finding a collision occur, and some edges collide at an
+  // eighth but at no probe state (about 1 edge in 200: hence 1,500 edges).
   EXPECT_GT(by_probe, 10);
   EXPECT_GT(by_search, 0);
+  EXPECT_GT(at_an_eighth, 0);
+  std::printf("[ sample   ] by a probe state %d, by the search %d (of which an eighth collides: %d)\n", by_probe,
+              by_search, at_an_eighth);
 }
 
 TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {

@@ -189,14 +189,15 @@ TEST(PartSweep, ClosedFormChordAndArc) {
 // checkEdge where only the arc's bulge beyond the chord touches: a robot
 // turns by 1 rad about z (from -0.5 to 0.5 rad), and a small cube (side
 // 0.01) sits on the arc of the robot's tip, at radius 0.975, where the tip
-// passes at t = 7/16, between the probe states (t = k / 8): 0.117 outside
+// passes at t = 7/16, between the probe states (t = k / 4) and the eighths: 0.117 outside
 // the line of the tip's chord over the whole edge. Two robots: a rod of 20
 // cubes (side 0.05) along the body x axis from the origin, and a lone cube
 // of side 0.01 at (0.975, 0, 0) (a part far from its body origin, the
 // robot's only piece: its leaf meets the obstacle's over the whole edge with
 // a growth below delta, where a chord sweep without its (h^2 / 2 + h^3 / 6)
 // |k| term would clear the pair at once). The edge must collide (a dense
-// check of 20,001 states finds the contact; none of the probe states does),
+// check of 20,001 states finds the contact; none of the probe states, nor
+// any eighth, does),
 // its first-contact bound no later than the dense check's first colliding
 // state; each robot also turning the other way round, from 0.5 to -0.5 rad.
 TEST(ChordSweep, EdgeTouchedOnlyByTheArcsBulgeCollides) {

@@ -18,7 +18,9 @@
 //    swept volumes may meet (a lower bound for every pair of pieces below),
 //    with one mddual::toi per pair of pieces it reaches, max_distance shrunk
 //    to the best contact so far; node pairs whose bound is not below it are
-//    pruned.
+//    pruned. When only whether there is a contact is asked (first_contact
+//    false: checkEdge's kValidity), the pairs are visited depth first and the
+//    first contact found ends the sweep.
 //    The first contact is the smallest toi over all pairs, as with a loop over
 //    every pair.
 //
@@ -216,7 +218,10 @@ struct PieceContact {
 
 /// Result of MddScene::sweep().
 struct SweepResult {
-  bool start_collides = false;  ///< the robot already touches or overlaps the world at s = 0
+  /// The robot already touches or overlaps the world at s = 0. Always right
+  /// with first_contact; without it (any contact ends the sweep) a colliding
+  /// start may go unseen when another contact was found first.
+  bool start_collides = false;
   /// Distance along v_W (world units) to the first contact: 0 when the start
   /// collides, +infinity when no contact within |v_W|. When only any contact
   /// was asked for (first_contact = false), a contact distance, not

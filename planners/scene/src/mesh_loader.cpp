@@ -10,6 +10,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "mddual/defaults.h"
 #include "mddual/scene/loaders.h"
 #include "scene_detail.h"
 
@@ -502,6 +503,14 @@ std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::p
       throw SceneError(display(file) + ": triangle " + std::to_string(t / 3) +
                        ": a corner is not finite once scaled and posed (the scale or pose is too large)");
     }
+    for (int c = 0; c < 3; ++c) {
+      if (p[c].cwiseAbs().maxCoeff() > defaults::kMaxCoordinate) {
+        throw SceneError(display(file) + ": triangle " + std::to_string(t / 3) + ": a corner once scaled and posed (" +
+                         shortNumber(p[c].cwiseAbs().maxCoeff()) + " from the origin along an axis) is beyond the " +
+                         "supported range of " + shortNumber(defaults::kMaxCoordinate) +
+                         " (the scale or pose is too large)");
+      }
+    }
     posed.insert(posed.end(), {p[0], p[1], p[2]});
     if (degenerate(p[0], p[1], p[2])) {
       ++out.degenerate_triangles;
@@ -552,6 +561,32 @@ std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::p
                            std::to_string(tri.size() / 3) + " triangles, which is exact but slower if it is convex");
   }
   if (out.convex) {
+    // The degenerate triangles set aside are covered by the solid hull when
+    // their corners lie in it; one that leaves it (a stray segment beside a
+    // convex body) is lost, and the warning names it.
+    std::vector<int> outside;
+    double outside_by = 0.0;
+    for (const int s : skipped) {
+      double by = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Vector3d& q = posed[3 * static_cast<std::size_t>(s) + static_cast<std::size_t>(c)];
+        for (int f = 0; f < check.hull.numFaces(); ++f) {
+          by = std::max(by, check.hull.faceNormal(f).dot(q) - check.hull.faceOffset(f));
+        }
+      }
+      if (by > plane_tol) {
+        outside.push_back(s);
+        outside_by = std::max(outside_by, by);
+      }
+    }
+    out.skipped_triangles = outside;
+    if (!outside.empty()) {
+      out.warnings.push_back(display(file) + ": skipped " + std::to_string(outside.size()) + " of " +
+                             std::to_string(out.triangles) + " triangles that are not polytopes (zero area, " +
+                             "repeated or collinear corners) and leave the convex hull the mesh is loaded as, by up " +
+                             "to " + shortNumber(outside_by) + ": " + triangleList(outside) +
+                             "; a body that touches only them does not collide with the mesh");
+    }
     pieces.push_back(Piece::make(std::move(check.hull), PieceKind::kConvex, origin_prefix + ": convex"));
     return pieces;
   }

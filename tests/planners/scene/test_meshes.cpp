@@ -179,6 +179,27 @@ TEST(Meshes, DegenerateTrianglesAreSkippedAndCounted) {
   EXPECT_EQ(pieces.size(), 1u);
 }
 
+TEST(Meshes, DegenerateTriangleOutsideAConvexMeshIsNamedInAWarning) {
+  // Found by a hostile-input hunt: a collinear triangle beside a convex box
+  // was dropped without a word (the box loads as its hull, which does not
+  // hold the segment). The one inside the box stays silent: the solid covers it.
+  TempDir dir;
+  std::vector<Eigen::Vector3d> tri = boxTriangles({0, 0, 0}, {1, 1, 1});
+  tri.insert(tri.end(), {{0, 0, 0}, {0.5, 0.5, 0.5}, {1, 1, 1}});             // inside: covered
+  tri.insert(tri.end(), {{-3, 0.5, 0.5}, {-2, 0.5, 0.5}, {-2.5, 0.5, 0.5}});  // outside, 3 from the box
+  const auto file = dir.write("cube_and_segment.stl", asciiStl(tri));
+  MeshInfo info;
+  const auto pieces = meshPieces(file, kOnes, kIdentity, {}, &info);
+  EXPECT_TRUE(info.convex);
+  EXPECT_EQ(pieces.size(), 1u);
+  EXPECT_EQ(info.degenerate_triangles, 2);
+  EXPECT_EQ(info.skipped_triangles, std::vector<int>{13});
+  ASSERT_EQ(info.warnings.size(), 1u);
+  const std::string& w = info.warnings[0];
+  EXPECT_NE(w.find(file.string() + ": skipped 1 of 14 triangles"), std::string::npos) << w;
+  EXPECT_NE(w.find("leave the convex hull the mesh is loaded as, by up to 3: triangle 13"), std::string::npos) << w;
+}
+
 TEST(Meshes, ColladaZUpIsConvertedToYUpAsAssimpDoes) {
   TempDir dir;
   // Z_UP: a point (x, y, z) of the file is read as (x, z, -y).
@@ -657,6 +678,19 @@ TEST(MeshErrors, NonFiniteScale) {
   const auto file = dir.write("cube.stl", asciiStl(boxTriangles({0, 0, 0}, {1, 1, 1})));
   expectSceneError([&] { meshPieces(file, Eigen::Vector3d(1, std::nan(""), 1), kIdentity, {}); },
                    {"cube.stl", "scale"});
+}
+
+TEST(MeshErrors, ScaleBeyondTheSupportedRange) {
+  // A hostile-input hunt's case: a URDF mesh scaled by 1e300 failed with the
+  // core's "polytope: point 0 ... out of the supported range", naming no file.
+  TempDir dir;
+  const auto file = dir.write("cube.stl", asciiStl(boxTriangles({0, 0, 0}, {1, 1, 1})));
+  expectSceneError([&] { meshPieces(file, Eigen::Vector3d(1e300, 1, 1), kIdentity, {}); },
+                   {"cube.stl: triangle 0: a corner once scaled and posed", "beyond the supported range of 1e+50"});
+  const auto urdf = dir.write("robot.urdf", R"(<robot name="r"><link name="arm">
+    <collision><geometry><mesh filename="cube.stl" scale="1e60 1 1"/></geometry></collision></link></robot>)");
+  expectSceneError([&] { loadBody(urdf); },
+                   {"robot.urdf: link 'arm', collision 0: mesh 'cube.stl'", "beyond the supported range"});
 }
 
 }  // namespace

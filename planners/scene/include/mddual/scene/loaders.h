@@ -82,7 +82,9 @@ struct MeshInfo {
   /// The hull that decides convexity could not be built (a qhull precision
   /// error): the mesh was loaded as triangles, and `warnings` says so.
   bool hull_failed = false;
-  /// Loaded as triangles: the file indices of the triangles skipped (sorted).
+  /// Loaded as triangles: the file indices of the triangles skipped (sorted);
+  /// loaded as one convex piece: those of the skipped triangles that leave
+  /// its hull (the others are inside the solid piece).
   std::vector<int> skipped_triangles;
   /// What the user should know about the load, each naming the file: the
   /// skipped triangles (with the largest distance by which they could change
@@ -163,7 +165,10 @@ World loadWorld(const std::filesystem::path& file, const LoadOptions& options = 
 ///     most 1e-6 of its longest edge, that the hull code rejects) is skipped,
 ///     counted in MeshInfo::degenerate_triangles and, when the mesh is loaded
 ///     as triangles, listed in a warning with its index and the largest
-///     distance a skipped triangle extends from its longest edge;
+///     distance a skipped triangle extends from its longest edge; when it is
+///     loaded as one convex piece, a skipped triangle inside the piece is
+///     covered by it, and one that leaves it is listed in a warning with the
+///     distance by which it does;
 ///   - when the hull that only decides convexity cannot be built (qhull's
 ///     precision errors on large, nearly coplanar meshes), the mesh is loaded
 ///     as triangles (exact, only slower if it was convex) and a warning says

@@ -581,8 +581,8 @@ constexpr const char* kBenchFooter =
     "(ompl_benchmark_statistics), DIR/plots/*.png and DIR/summary.md and prints the summary table.\n"
     "--shard I/N runs runs r with r mod N = I only, seeds OMPL with a splitmix64 hash of (seed, I, N) and\n"
     "skips the report: run `mddual bench-report DIR` when every shard is done. Before planning, the start and\n"
-    "goal states are checked (within the bounds, free of the world by the exact test). Exit status 2 for bad\n"
-    "input.";
+    "goal states are checked (within the bounds, free of the world by the exact test and by each checker).\n"
+    "Exit status 2 for bad input.";
 
 }  // namespace
 

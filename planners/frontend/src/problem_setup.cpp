@@ -408,6 +408,19 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
   } catch (const InvalidInputError& e) {
     throw InvalidInputError(where + ": start or goal: " + e.what());
   }
+  // The checker must find them free too: checkStartAndGoal's exact test can
+  // call a state free that a checker, deciding contact within its precision
+  // (relative to the size of the pieces), calls touching, e.g. beside a world
+  // triangle 1e12 across; every run would then end at "invalid start".
+  for (const auto& [which, state] : {std::pair<const char*, const ob::State*>{"start", start.get()},
+                                     std::pair<const char*, const ob::State*>{"goal", goal.get()}}) {
+    if (state_checker->isValid(state)) continue;
+    throw InvalidInputError(where + ": the " + which + " state is in collision for the " + toString(checker) +
+                            " checker (OMPL's planners would refuse it in every run), though the bench's exact " +
+                            "check of each pair of pieces may find it free: the checkers decide contact within " +
+                            "a precision relative to the size of the pieces, and pieces of very different sizes " +
+                            "(a huge world triangle beside a small robot) make that precision coarse");
+  }
   const double threshold = cfg.threshold.value_or(scene::kDefaultGoalThreshold);
   if (!(threshold > 0.0)) throw InvalidInputError(where + ": threshold must be positive");
   ss_->setStartAndGoalStates(start, goal, threshold);

@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 
+#include "mddual/defaults.h"
 #include "problem_config_detail.h"
 #include "scene_detail.h"
 
@@ -207,8 +208,18 @@ void readProblem(const Reader& r, const std::vector<Entry>& entries, ProblemConf
     Eigen::Vector3d lo(num("volume.min.x"), num("volume.min.y"), has("volume.min.z") ? num("volume.min.z") : 0.0);
     Eigen::Vector3d hi(num("volume.max.x"), num("volume.max.y"), has("volume.max.z") ? num("volume.max.z") : 0.0);
     for (int i = 0; i < 3; ++i) {
+      const std::string axis(1, "xyz"[i]);
+      for (const auto& [key, v] :
+           {std::make_pair("volume.min." + axis, lo[i]), std::make_pair("volume.max." + axis, hi[i])}) {
+        // The state space's positions reach the volume's corners, and the
+        // core's queries accept coordinates up to kMaxCoordinate.
+        if (has(key) && !(std::abs(v) <= defaults::kMaxCoordinate)) {
+          r.fail(known.at(key)->line, key + ": " + detail::formatNumber(v) + " is outside the supported range [-" +
+                                          detail::formatNumber(defaults::kMaxCoordinate) + ", " +
+                                          detail::formatNumber(defaults::kMaxCoordinate) + "]");
+        }
+      }
       if (lo[i] > hi[i]) {
-        const std::string axis(1, "xyz"[i]);
         r.fail(known.at("volume.max." + axis)->line,
                "volume.max." + axis + " is below volume.min." + axis + " (empty volume)");
       }

@@ -131,9 +131,13 @@ Eigen::Isometry3d toIsometry(const PoseSpec& pose, SpaceKind kind) {
   }
   X.translation() = pose.position;
   // OMPL's SO3StateSpace::StateType::setAxisAngle: the axis is normalised, a
-  // (near) zero axis gives the identity.
-  const double norm = pose.axis.norm();
-  if (norm >= 1e-9) X.linear() = Eigen::AngleAxisd(pose.theta, pose.axis / norm).toRotationMatrix();
+  // (near) zero axis gives the identity. Scaled by its largest component
+  // first: the norm of an axis such as (1e308, 1e308, 0) overflows.
+  const double largest = pose.axis.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0)) return X;
+  const Eigen::Vector3d scaled = pose.axis / largest;
+  if (scaled.norm() * largest >= 1e-9)
+    X.linear() = Eigen::AngleAxisd(pose.theta, scaled.normalized()).toRotationMatrix();
   return X;
 }
 

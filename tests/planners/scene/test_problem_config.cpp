@@ -319,6 +319,12 @@ TEST(ProblemConfig, PosesFollowOmplConventions) {
   EXPECT_TRUE(Y.linear().isApprox(Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix(), 1e-15));
   EXPECT_EQ(Y.translation(), Eigen::Vector3d(1, 2, 0));
   EXPECT_STREQ(toString(SpaceKind::kR2), "r2");
+  // An axis whose norm overflows (a hostile-input hunt's case) is still a
+  // direction: the rotation about (1, 1, 0) / sqrt(2).
+  p.axis = {1e308, 1e308, 0};
+  const Eigen::Isometry3d Z = toIsometry(p, SpaceKind::kSE3);
+  EXPECT_TRUE(
+      Z.linear().isApprox(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix(), 1e-15));
 }
 
 // --- errors: one per case, each naming the file and the line ------------
@@ -389,6 +395,15 @@ TEST(ProblemConfigErrors, VolumeGivenInPart) {
 }
 TEST(ProblemConfigErrors, EmptyVolume) {
   expectPlanarError("volume.max.x = 50", "volume.max.x = -60", {"maze.cfg:14: volume.max.x is below volume.min.x"});
+}
+TEST(ProblemConfigErrors, VolumeBeyondTheSupportedRange) {
+  // A hostile-input hunt's cases: -1e308 gave OMPL's "lower bound must be
+  // strictly less than upper bound" (the extent overflows), 1e200 a core
+  // error in the middle of planning; neither named the cfg or the key.
+  expectPlanarError("volume.max.x = 50", "volume.max.x = 1e308",
+                    {"maze.cfg:14: volume.max.x: 1e+308 is outside the supported range [-1e+50, 1e+50]"});
+  expectPlanarError("volume.max.x = 50", "volume.max.x = 1e51",
+                    {"maze.cfg:14: volume.max.x: 1e+51 is outside the supported range"});
 }
 TEST(ProblemConfigErrors, NegativeThreshold) {
   expectPlanarError("threshold = 1e-12", "threshold = -1", {"maze.cfg:16: threshold: must be >= 0"});

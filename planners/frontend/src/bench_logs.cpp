@@ -134,9 +134,20 @@ void checkPlanner(LogReader& r, long index) {
   const long common = r.count({"common", "properties"}, "'<n> common properties' of " + planner);
   for (long k = 0; k < common; ++k) r.line("common property " + std::to_string(k + 1) + " of " + planner);
   const long properties = r.count({"properties", "for", "each", "run"}, "'<n> properties for each run' of " + planner);
+  // Whether each property's values must be numbers: the statistics script
+  // makes the type a column's type, and sqlite then keeps text in it, which
+  // the report's medians cannot sort.
+  std::vector<bool> numeric;
   for (long k = 0; k < properties; ++k) {
-    const std::string what = "run property " + std::to_string(k + 1) + " of " + planner + " ('<name> <TYPE>')";
-    if (tokens(r.line(what)).size() < 2) r.failAt(what);
+    const std::string what = "run property " + std::to_string(k + 1) + " of " + planner +
+                             " ('<name> <TYPE>', TYPE one of BOOLEAN, INTEGER, REAL, ENUM, STRING)";
+    const std::vector<std::string> t = tokens(r.line(what));
+    if (t.size() < 2) r.failAt(what);
+    const std::string& type = t.back();
+    if (type != "BOOLEAN" && type != "INTEGER" && type != "REAL" && type != "ENUM" && type != "STRING") {
+      r.failAt(what);
+    }
+    numeric.push_back(type != "STRING");
   }
   const long runs = r.count({"runs"}, "'<n> runs' of " + planner);
   for (long k = 0; k < runs; ++k) {
@@ -145,7 +156,18 @@ void checkPlanner(LogReader& r, long index) {
     // ompl_benchmark_statistics: line.split('; ')[:-1], one value per property.
     const std::string& text = r.line(what);
     long values = 0;
-    for (std::size_t at = text.find("; "); at != std::string::npos; at = text.find("; ", at + 2)) ++values;
+    std::size_t from = 0;
+    for (std::size_t at = text.find("; "); at != std::string::npos; at = text.find("; ", from)) {
+      // Empty, nan and inf are OMPL's "no value"; other text in a numeric
+      // property is no value at all.
+      const std::string value = text.substr(from, at - from);
+      if (values < properties && numeric[static_cast<std::size_t>(values)] && !value.empty() && !isNumber(value)) {
+        r.failAt(what + "; value " + std::to_string(values + 1) + ", '" + value.substr(0, kMaxQuotedLine) +
+                 "', is not a number");
+      }
+      ++values;
+      from = at + 2;
+    }
     if (values != properties) r.failAt(what);
   }
   // Then "." or the progress data: its properties, runs, and ".".
@@ -223,7 +245,8 @@ void checkBenchLog(const std::filesystem::path& log) {
       for (long k = 0; k < enums; ++k) r.line("enum type " + std::to_string(k + 1));
     }
   }
-  const long planners = r.count({"planners"}, "'<n> planners'");
+  const long planners = r.count({"planners"}, "'<n> planners' (at least one)");
+  if (planners == 0) r.failAt("'<n> planners' (at least one)");
   for (long p = 0; p < planners; ++p) checkPlanner(r, p);
 }
 

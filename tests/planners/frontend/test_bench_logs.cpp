@@ -158,6 +158,31 @@ TEST_F(BenchLogs, ProgressDataAndOtherHeaders) {
   EXPECT_NE(check(bad).find(": line 19: expected '<n> runs' of planner 1, found 'x runs'"), std::string::npos)
       << check(bad);
   EXPECT_THROW(checkBenchLog(dir_ / "missing.log"), InvalidInputError);
+  // OMPL's "no value" (empty, nan, inf) passes in a numeric property.
+  std::string none = log;
+  none.replace(none.find("0.2; 0; "), 8, "nan; ; ");
+  none.replace(none.find("0.1; 1; "), 8, "inf; 1; ");
+  EXPECT_EQ(check(none), "");
+  // Found by a hostile-input hunt, each accepted here and then a Python
+  // traceback in the report: no planner (the statistics script's SQL breaks),
+  // a property type sqlite takes but the report cannot (text in it), a run
+  // value that is no number in a numeric property.
+  std::string no_planner = log.substr(0, log.find("1 planners\n")) + "0 planners\n";
+  EXPECT_NE(check(no_planner).find(": line 12: expected '<n> planners' (at least one), found '0 planners'"),
+            std::string::npos)
+      << check(no_planner);
+  std::string blob = log;
+  blob.replace(blob.find("time REAL\nsolved"), 9, "time BLOB");
+  EXPECT_NE(check(blob).find(": line 17: expected run property 1 of planner 1 ('<name> <TYPE>', TYPE one of BOOLEAN, "
+                             "INTEGER, REAL, ENUM, STRING), found 'time BLOB'"),
+            std::string::npos)
+      << check(blob);
+  std::string text = log;
+  text.replace(text.find("0.2; 0; "), 8, "abc; 0; ");
+  EXPECT_NE(check(text).find(": line 21: expected run 2 of planner 1 (2 values, each followed by '; '); value 1, "
+                             "'abc', is not a number, found 'abc; 0; '"),
+            std::string::npos)
+      << check(text);
 }
 
 TEST_F(BenchLogs, CopiesAreFoundByContent) {

@@ -18,8 +18,10 @@ namespace mddual::planning {
 /// Checks that `log` is a complete OMPL benchmark log in the format
 /// ompl::tools::Benchmark::saveResultsToStream writes: header lines, the
 /// setup and optional CPU-info blocks closed, the limits, the enums, and for
-/// each declared planner its declared common properties, run properties, runs
-/// (each with one value per run property) and progress data, ending with ".".
+/// each of its planners (at least one) its declared common properties, run
+/// properties (types BOOLEAN, INTEGER, REAL, ENUM or STRING), runs (each with
+/// one value per run property, a number or OMPL's empty, nan or inf unless
+/// the type is STRING) and progress data, ending with ".".
 /// Throws InvalidInputError "<file>: line <n>: expected <what>, found <the
 /// line | the end of the file> (the log is cut off or is not an OMPL
 /// benchmark log)".

@@ -38,9 +38,12 @@
 #include <ompl/geometric/planners/sbl/pSBL.h>
 #include <ompl/geometric/planners/sst/SST.h>
 #include <ompl/geometric/planners/stride/STRIDE.h>
+#include <ompl/util/Console.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
 
@@ -140,6 +143,31 @@ std::string knownList() {
   return known;
 }
 
+/// A real parameter's value must be a finite number (OMPL would store NaN,
+/// or fail with a message that names neither); one outside the range OMPL
+/// declares for it gets a warning (a range suggestion, not always a limit:
+/// a planner's range may exceed 10000 in a large world, a goal bias of 5
+/// makes no sense).
+void checkRealParameter(const ob::GenericParam& param, const std::string& value, const std::string& where) {
+  if (dynamic_cast<const ob::SpecificParam<double>*>(&param) == nullptr) return;
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v)) {
+    throw InvalidInputError(where + ": not a finite number");
+  }
+  // OMPL's suggestion "low:step:high".
+  const std::string& range = param.getRangeSuggestion();
+  const std::size_t first = range.find(':');
+  const std::size_t last = range.rfind(':');
+  if (first == std::string::npos || first == last) return;
+  const double low = std::strtod(range.substr(0, first).c_str(), nullptr);
+  const double high = std::strtod(range.substr(last + 1).c_str(), nullptr);
+  if (v < low || v > high) {
+    OMPL_WARN("%s: outside the range OMPL declares for it, [%s, %s]", where.c_str(), range.substr(0, first).c_str(),
+              range.substr(last + 1).c_str());
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> plannerNames() {
@@ -165,8 +193,16 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
       planner->setName(value);
     } else if (!planner->params().hasParam(key)) {
       throw InvalidInputError("planner '" + name + "' has no parameter '" + key + "'");
-    } else if (!planner->params().setParam(key, value)) {
-      throw InvalidInputError("planner '" + name + "': parameter '" + key + "' rejects the value '" + value + "'");
+    } else {
+      const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + value + "'";
+      checkRealParameter(*planner->params().getParams().at(key), value, where);
+      bool ok = false;
+      try {
+        ok = planner->params().setParam(key, value);
+      } catch (const std::exception& e) {
+        throw InvalidInputError(where + ": " + e.what());
+      }
+      if (!ok) throw InvalidInputError(where + ": OMPL rejects the value");
     }
   }
   return planner;

@@ -222,6 +222,28 @@ TEST(PlannerFactory, ErrorsNameTheProblem) {
     EXPECT_NE(std::string(e.what()).find("rrtconnect"), std::string::npos);
   }
   EXPECT_THROW(makePlanner("rrt", si, {{"rnage", "1"}}), InvalidInputError);
+  // A hostile-input hunt's cases: a real parameter that is no finite number
+  // failed with OMPL's "Failed converting string to real number", naming
+  // neither; each message now names the planner, the parameter and the value.
+  for (const char* bad : {"nan", "inf", "abc", "1.5x", ""}) {
+    try {
+      makePlanner("rrtconnect", si, {{"range", bad}});
+      ADD_FAILURE() << "'" << bad << "' accepted";
+    } catch (const InvalidInputError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("planner 'rrtconnect': parameter 'range' = '") + bad + "': not a finite number");
+    }
+  }
+  try {
+    makePlanner("prm", si, {{"max_nearest_neighbors", "many"}});  // an integer parameter
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("planner 'prm': parameter 'max_nearest_neighbors' = 'many'"),
+              std::string::npos)
+        << e.what();
+  }
+  // Outside the range OMPL declares: a warning only (a range may exceed it).
+  EXPECT_EQ(makePlanner("rrt", si, {{"range", "20000"}})->params().getParam("range")->getValue(), "20000");
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -84,7 +85,7 @@ long parsePositiveInt(const std::string& flag, const std::string& text) {
     used = 0;
   }
   if (used != text.size() || text.empty() || v < 1 || v > 1000000000L) {
-    throw FatalError(flag + ": '" + clipForMessage(text) + "' is not a positive integer");
+    throw FatalError(flag + ": '" + clipForMessage(text) + "' is not an integer in [1, 1000000000]");
   }
   return v;
 }
@@ -94,6 +95,9 @@ double parsePositiveReal(const std::string& flag, const std::string& text) {
   double v = 0.0;
   try {
     v = std::stod(text, &used);
+  } catch (const std::out_of_range&) {
+    // Beyond double's range, or a positive number below its smallest normal one.
+    throw FatalError(flag + ": '" + clipForMessage(text) + "' is out of the range of double precision");
   } catch (const std::exception&) {
     used = 0;
   }
@@ -588,20 +592,31 @@ constexpr const char* kBenchFooter =
 
 void registerBenchCommand(CLI::App& app) {
   auto flags = std::make_shared<BenchFlags>();
+  // An option given with an empty value is an error, not its default (a
+  // hostile-input hunt: `--output ''` wrote to out/bench/<config>/).
+  const auto notEmpty = [](const std::string& flag, std::string* to) {
+    return [flag, to](const std::string& value) {
+      if (value.empty()) throw FatalError(flag + ": an empty value (leave the option out for its default)");
+      *to = value;
+    };
+  };
   CLI::App* sub =
       app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");
   sub->footer(kBenchFooter);
   sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
   sub->add_option("--checkers", flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
       ->option_text("LIST");
-  sub->add_option("--planners", flags->planners,
-                  "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
-                  "the cfg's)")
+  sub->add_option_function<std::string>(
+         "--planners", notEmpty("--planners", &flags->planners),
+         "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
+         "the cfg's)")
       ->option_text("LIST");
   sub->add_option("--runs", flags->runs, "runs per planner (default: the cfg's run_count)")->option_text("N");
   sub->add_option("--time-limit", flags->time_limit, "seconds per run (default: the cfg's time_limit)")
       ->option_text("S");
-  sub->add_option("--output", flags->output, "output folder (default: out/bench/<config>/)")->option_text("DIR");
+  sub->add_option_function<std::string>("--output", notEmpty("--output", &flags->output),
+                                        "output folder (default: out/bench/<config>/)")
+      ->option_text("DIR");
   sub->add_option("--shard", flags->shard, "run only slice I of N of the runs (0 <= I < N)")->option_text("I/N");
   sub->add_option("--seed", flags->seed,
                   "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)")

@@ -70,7 +70,8 @@ TEST(CliBenchHostile, HugeNamesAreCutInMessages) {
   // A flag's value.
   const CliRun runs = runCli({"bench", cfg.string(), "--runs", std::string(100000, '9')});
   EXPECT_EQ(runs.exit_code, 2);
-  EXPECT_EQ(runs.err, "mddual: --runs: '" + std::string(200, '9') + "... (100000 bytes)' is not a positive integer\n");
+  EXPECT_EQ(runs.err,
+            "mddual: --runs: '" + std::string(200, '9') + "... (100000 bytes)' is not an integer in [1, 1000000000]\n");
 }
 
 /// A small benchmark log as mddual bench writes them (two runs of one

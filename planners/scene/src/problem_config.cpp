@@ -55,6 +55,8 @@ class Reader {
     int number = 0;
     while (std::getline(in, raw)) {
       ++number;
+      // A UTF-8 byte-order mark (some Windows editors write one) is no text.
+      if (number == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0) raw.erase(0, 3);
       std::string text = raw.substr(0, raw.find('#'));  // '#' starts a comment anywhere (as boost's parser)
       text = trim(text);
       if (text.empty() || text[0] == ';') continue;
@@ -97,7 +99,8 @@ class Reader {
     if (first != last && *first == '+') ++first;
     const auto [ptr, ec] = std::from_chars(first, last, v);
     if (ec != std::errc() || ptr != last || first == last || v < 0 || v > std::numeric_limits<int>::max()) {
-      fail(e.line, e.key + ": " + quote(e.value) + " is not an integer >= 0");
+      fail(e.line, e.key + ": " + quote(e.value) + " is not an integer in [0, " +
+                       std::to_string(std::numeric_limits<int>::max()) + "]");
     }
     return static_cast<int>(v);
   }

@@ -302,6 +302,15 @@ TEST(ProblemConfig, PlanarVolumeWithZRoundTrips) {
   EXPECT_TRUE(readProblemConfig(dir.path() / "z2.cfg") == c);
 }
 
+TEST(ProblemConfig, AByteOrderMarkIsNoText) {
+  // A hostile-input hunt's case: "maze.cfg:1: expected 'key = value', got
+  // '[problem]'" with the mark invisible in the message.
+  TempDir dir;
+  const ProblemConfig plain = readProblemConfig(dir.write("plain.cfg", kPlanar));
+  const ProblemConfig marked = readProblemConfig(dir.write("marked.cfg", "\xEF\xBB\xBF" + std::string(kPlanar)));
+  EXPECT_TRUE(marked == plain);
+}
+
 TEST(ProblemConfig, PosesFollowOmplConventions) {
   PoseSpec p;
   p.position = {1, 2, 3};
@@ -435,8 +444,12 @@ TEST(ProblemConfigErrors, UnknownBenchmarkKey) {
   expectPlanarError("run_count = 30", "runs = 30", {"maze.cfg:21: unknown [benchmark] key 'runs'"});
 }
 TEST(ProblemConfigErrors, BadRunCount) {
-  expectPlanarError("run_count = 30", "run_count = -3", {"maze.cfg:21: run_count: '-3' is not an integer >= 0"});
-  expectPlanarError("run_count = 30", "run_count = 2.5", {"maze.cfg:21: run_count: '2.5' is not an integer >= 0"});
+  expectPlanarError("run_count = 30", "run_count = 99999999999999999999",
+                    {"maze.cfg:21: run_count: '99999999999999999999' is not an integer in [0, 2147483647]"});
+  expectPlanarError("run_count = 30", "run_count = -3",
+                    {"maze.cfg:21: run_count: '-3' is not an integer in [0, 2147483647]"});
+  expectPlanarError("run_count = 30", "run_count = 2.5",
+                    {"maze.cfg:21: run_count: '2.5' is not an integer in [0, 2147483647]"});
 }
 TEST(ProblemConfigErrors, NonPositiveTimeLimit) {
   expectPlanarError("time_limit = 20.0", "time_limit = 0", {"maze.cfg:19: time_limit: must be > 0"});

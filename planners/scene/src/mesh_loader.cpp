@@ -467,6 +467,9 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
                                         const Eigen::Isometry3d& X_OM, const LoadOptions& options,
                                         const std::string& origin_prefix, MeshInfo* info) {
   if (!scale.allFinite()) throw SceneError(display(file) + ": the mesh scale has a non-finite entry");
+  // A zero entry flattens the mesh into a plane (as a zero-sized box, which
+  // is refused): most triangles would be skipped as degenerate.
+  if ((scale.array() == 0.0).any()) throw SceneError(display(file) + ": the mesh scale has a zero entry");
   if (!X_OM.matrix().allFinite()) throw SceneError(display(file) + ": the mesh pose has a non-finite entry");
   return meshDataPieces(readMesh(file), file, scale, X_OM, options, origin_prefix, info);
 }

@@ -680,6 +680,15 @@ TEST(MeshErrors, NonFiniteScale) {
                    {"cube.stl", "scale"});
 }
 
+TEST(MeshErrors, ZeroScale) {
+  // A hostile-input hunt's case: URDF scale="0 1 1" loaded with a warning
+  // about skipped triangles, where a zero-sized box is refused.
+  TempDir dir;
+  const auto file = dir.write("cube.stl", asciiStl(boxTriangles({0, 0, 0}, {1, 1, 1})));
+  expectSceneError([&] { meshPieces(file, Eigen::Vector3d(0, 1, 1), kIdentity, {}); },
+                   {"cube.stl: the mesh scale has a zero entry"});
+}
+
 TEST(MeshErrors, ScaleBeyondTheSupportedRange) {
   // A hostile-input hunt's case: a URDF mesh scaled by 1e300 failed with the
   // core's "polytope: point 0 ... out of the supported range", naming no file.

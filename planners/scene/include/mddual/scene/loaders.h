@@ -177,7 +177,8 @@ World loadWorld(const std::filesystem::path& file, const LoadOptions& options = 
 ///
 /// Throws SceneError naming the file (and the step: the assimp error, the
 /// vertex, the triangle, the hull) for a missing, unreadable or unsupported
-/// file, a COLLADA file nested deeper than 256 elements, a vertex that is NaN
+/// file, a scale with a non-finite or zero entry, a corner scaled and posed
+/// beyond defaults::kMaxCoordinate, a COLLADA file nested deeper than 256 elements, a vertex that is NaN
 /// or overflows assimp's 32-bit floats (|x| > 3.4e38), a file without
 /// triangles or none of whose triangles is a polytope, a triangle that is no
 /// sliver but that the hull code rejects (a small triangle far from the

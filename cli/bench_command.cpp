@@ -604,28 +604,36 @@ void registerBenchCommand(CLI::App& app) {
       app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");
   sub->footer(kBenchFooter);
   sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
-  sub->add_option("--checkers", flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
+  sub->add_option_function<std::string>("--checkers", notEmpty("--checkers", &flags->checkers),
+                                        "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
       ->option_text("LIST");
   sub->add_option_function<std::string>(
          "--planners", notEmpty("--planners", &flags->planners),
          "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
          "the cfg's)")
       ->option_text("LIST");
-  sub->add_option("--runs", flags->runs, "runs per planner (default: the cfg's run_count)")->option_text("N");
-  sub->add_option("--time-limit", flags->time_limit, "seconds per run (default: the cfg's time_limit)")
+  sub->add_option_function<std::string>("--runs", notEmpty("--runs", &flags->runs),
+                                        "runs per planner (default: the cfg's run_count)")
+      ->option_text("N");
+  sub->add_option_function<std::string>("--time-limit", notEmpty("--time-limit", &flags->time_limit),
+                                        "seconds per run (default: the cfg's time_limit)")
       ->option_text("S");
   sub->add_option_function<std::string>("--output", notEmpty("--output", &flags->output),
                                         "output folder (default: out/bench/<config>/)")
       ->option_text("DIR");
-  sub->add_option("--shard", flags->shard, "run only slice I of N of the runs (0 <= I < N)")->option_text("I/N");
-  sub->add_option("--seed", flags->seed,
-                  "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)")
+  sub->add_option_function<std::string>("--shard", notEmpty("--shard", &flags->shard),
+                                        "run only slice I of N of the runs (0 <= I < N)")
+      ->option_text("I/N");
+  sub->add_option_function<std::string>("--seed", notEmpty("--seed", &flags->seed),
+                                        "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)")
       ->option_text("K");
-  sub->add_option("--report", flags->report, "only build the database and report from the logs in DIR")
+  sub->add_option_function<std::string>("--report", notEmpty("--report", &flags->report),
+                                        "only build the database and report from the logs in DIR")
       ->option_text("DIR");
-  sub->add_option("--report-timeout", flags->report_timeout,
-                  "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
-                      formatSeconds(kDefaultReportTimeout) + ")")
+  sub->add_option_function<std::string>(
+         "--report-timeout", notEmpty("--report-timeout", &flags->report_timeout),
+         "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
+             formatSeconds(kDefaultReportTimeout) + ")")
       ->option_text("S");
   sub->callback([flags] { runBenchCommand(*flags); });
 
@@ -638,9 +646,10 @@ void registerBenchCommand(CLI::App& app) {
       "complete shard sets; a log with the same content as another (a copy) is reported and counted once.");
   report->add_option("dir", *dir, "folder with the logs of mddual bench (all shards)")->required()->option_text("DIR");
   report
-      ->add_option("--timeout", *timeout,
-                   "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
-                       formatSeconds(kDefaultReportTimeout) + ")")
+      ->add_option_function<std::string>(
+          "--timeout", notEmpty("--timeout", timeout.get()),
+          "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
+              formatSeconds(kDefaultReportTimeout) + ")")
       ->option_text("S");
   report->callback([dir, timeout] { runBenchReport(*dir, reportTimeout("--timeout", *timeout)); });
 }

@@ -217,6 +217,8 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
       {{cfg, "--time-limit", "1e-320"}, "--time-limit: '1e-320' is out of the range of double precision"},
       {{cfg, "--output", ""}, "--output: an empty value (leave the option out for its default)"},
       {{cfg, "--planners", ""}, "--planners: an empty value (leave the option out for its default)"},
+      {{cfg, "--runs", ""}, "--runs: an empty value (leave the option out for its default)"},
+      {{cfg, "--seed", ""}, "--seed: an empty value (leave the option out for its default)"},
       {{cfg, "--time-limit", "1e18", "--output", out}, "the time limit must be a positive number of seconds, at most"},
       {{cfg, "--seed", "0"}, "--seed: '0' is not an integer in [1, 1000000000]"},
       {{cfg, "--planners", "prn"}, "unknown planner 'prn': not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},

@@ -155,11 +155,11 @@ void checkRealParameter(const ob::GenericParam& param, const std::string& value,
   if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v)) {
     throw InvalidInputError(where + ": not a finite number");
   }
-  // OMPL's suggestion "low:step:high".
+  // OMPL's suggestion "low:step:high" or "low:high".
   const std::string& range = param.getRangeSuggestion();
   const std::size_t first = range.find(':');
   const std::size_t last = range.rfind(':');
-  if (first == std::string::npos || first == last) return;
+  if (first == std::string::npos) return;
   const double low = std::strtod(range.substr(0, first).c_str(), nullptr);
   const double high = std::strtod(range.substr(last + 1).c_str(), nullptr);
   if (v < low || v > high) {

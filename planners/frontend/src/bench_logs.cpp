@@ -21,6 +21,13 @@ namespace {
 constexpr long kMaxDeclaredCount = 100000000;
 // Characters of an offending line quoted in a message.
 constexpr std::size_t kMaxQuotedLine = 80;
+/// Property types whose values are numbers (OMPL's, and what sqlite gives
+/// numeric affinity among the words OMPL's planners use).
+constexpr const char* kNumericTypes[] = {"BOOLEAN", "INTEGER", "REAL", "ENUM", "DOUBLE", "FLOAT", "NUMERIC"};
+/// Run properties scripts/bench_report.py reads as numbers.
+constexpr const char* kReportedNumbers[] = {"time",          "solved",           "approximate solution",
+                                            "verified",      "invalid solution", "invalid raw solution",
+                                            "checking time", "state checks",     "motion checks"};
 
 std::vector<std::string> tokens(const std::string& line) {
   std::istringstream in(line);
@@ -134,20 +141,26 @@ void checkPlanner(LogReader& r, long index) {
   const long common = r.count({"common", "properties"}, "'<n> common properties' of " + planner);
   for (long k = 0; k < common; ++k) r.line("common property " + std::to_string(k + 1) + " of " + planner);
   const long properties = r.count({"properties", "for", "each", "run"}, "'<n> properties for each run' of " + planner);
-  // Whether each property's values must be numbers: the statistics script
-  // makes the type a column's type, and sqlite then keeps text in it, which
-  // the report's medians cannot sort.
+  // Whether each property's values must be numbers. The statistics script
+  // makes the last word a column's type (any word: OMPL's informed trees
+  // write "best cost DOUBLE"), and sqlite keeps text in a column of any
+  // type, which the report's medians cannot sort: the properties the report
+  // reads need a numeric type, and a numeric type needs numbers.
   std::vector<bool> numeric;
   for (long k = 0; k < properties; ++k) {
-    const std::string what = "run property " + std::to_string(k + 1) + " of " + planner +
-                             " ('<name> <TYPE>', TYPE one of BOOLEAN, INTEGER, REAL, ENUM, STRING)";
+    const std::string what = "run property " + std::to_string(k + 1) + " of " + planner + " ('<name> <TYPE>')";
     const std::vector<std::string> t = tokens(r.line(what));
     if (t.size() < 2) r.failAt(what);
     const std::string& type = t.back();
-    if (type != "BOOLEAN" && type != "INTEGER" && type != "REAL" && type != "ENUM" && type != "STRING") {
-      r.failAt(what);
+    numeric.push_back(std::find(std::begin(kNumericTypes), std::end(kNumericTypes), type) != std::end(kNumericTypes));
+    std::string name = t.front();
+    for (std::size_t w = 1; w + 1 < t.size(); ++w) name += " " + t[w];
+    const bool read =
+        std::find(std::begin(kReportedNumbers), std::end(kReportedNumbers), name) != std::end(kReportedNumbers);
+    if (read && !numeric.back()) {
+      r.failAt(what + "; the report reads '" + name +
+               "' as a number, so its TYPE must be BOOLEAN, INTEGER, REAL, ENUM, DOUBLE, FLOAT or NUMERIC");
     }
-    numeric.push_back(type != "STRING");
   }
   const long runs = r.count({"runs"}, "'<n> runs' of " + planner);
   for (long k = 0; k < runs; ++k) {

@@ -257,6 +257,12 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
   if (cfg.save_paths != scene::SavePaths::kNone) std::filesystem::create_directories(paths_dir);
 
   const PathVerifier verifier(problem.robot(), problem.world(), problem.scene->bounds, options.verifier);
+  // Every checker's setup once before any run: ProblemSetup refuses a start
+  // or goal its checker finds in collision, which must stop the command
+  // before the first checker's runs, not after them.
+  for (std::size_t ci = 1; ci < options.checkers.size(); ++ci) {
+    const ProblemSetup check(problem, options.checkers[ci], options.setup);
+  }
   std::vector<BenchLog> logs;
   for (std::size_t ci = 0; ci < options.checkers.size(); ++ci) {
     const CheckerKind checker = options.checkers[ci];

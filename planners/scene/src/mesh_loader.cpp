@@ -328,6 +328,28 @@ std::string triangleList(const std::vector<int>& indices) {
   return s;
 }
 
+/// How far q lies beyond the constraints of `hull`: its face planes, and for
+/// a flat hull (faces +-n only) its polygon's edges in the plane; 0 inside.
+/// A lower bound of q's distance from the hull, positive exactly outside it.
+double beyondHull(const ConvexPolytope& hull, const Eigen::Vector3d& q) {
+  double by = 0.0;
+  for (int f = 0; f < hull.numFaces(); ++f) by = std::max(by, hull.faceNormal(f).dot(q) - hull.faceOffset(f));
+  if (!hull.isFlat() || hull.numFaces() == 0) return by;
+  const IndexRange loop = hull.faceVertices(0);
+  const Eigen::Vector3d& n = hull.faceNormal(0);
+  for (int i = 0; i < loop.size(); ++i) {
+    const Eigen::Vector3d& a = hull.vertex(loop[i]);
+    const Eigen::Vector3d& b = hull.vertex(loop[(i + 1) % loop.size()]);
+    Eigen::Vector3d m = (b - a).cross(n);  // in the plane, across the edge
+    const double length = m.norm();
+    if (!(length > 0.0)) continue;
+    m /= length;
+    if (m.dot(hull.centroid() - a) > 0.0) m = -m;  // outward
+    by = std::max(by, m.dot(q - a));
+  }
+  return by;
+}
+
 std::string shortNumber(double x) {
   std::ostringstream s;
   s.precision(3);
@@ -535,11 +557,12 @@ std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::p
   std::vector<Piece> pieces;
   if (options.mesh_convex_hull) {
     // The hull is asked for: here its failure is the load's.
+    // Of every corner, the degenerate triangles' too: they are mesh points.
     ConvexPolytope hull;
     try {
-      hull = ConvexPolytope::fromPoints(tri);
+      hull = ConvexPolytope::fromPoints(posed);
     } catch (const Error& e) {
-      throw SceneError(display(file) + ": cannot build the convex hull of its " + std::to_string(tri.size() / 3) +
+      throw SceneError(display(file) + ": cannot build the convex hull of its " + std::to_string(out.triangles) +
                        " triangles (the mesh_convex_hull option): " + briefReason(e.what()));
     }
     pieces.push_back(Piece::make(std::move(hull), PieceKind::kConvex, origin_prefix + ": convex"));
@@ -572,10 +595,7 @@ std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::p
     for (const int s : skipped) {
       double by = 0.0;
       for (int c = 0; c < 3; ++c) {
-        const Eigen::Vector3d& q = posed[3 * static_cast<std::size_t>(s) + static_cast<std::size_t>(c)];
-        for (int f = 0; f < check.hull.numFaces(); ++f) {
-          by = std::max(by, check.hull.faceNormal(f).dot(q) - check.hull.faceOffset(f));
-        }
+        by = std::max(by, beyondHull(check.hull, posed[3 * static_cast<std::size_t>(s) + static_cast<std::size_t>(c)]));
       }
       if (by > plane_tol) {
         outside.push_back(s);
@@ -586,8 +606,8 @@ std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::p
     if (!outside.empty()) {
       out.warnings.push_back(display(file) + ": skipped " + std::to_string(outside.size()) + " of " +
                              std::to_string(out.triangles) + " triangles that are not polytopes (zero area, " +
-                             "repeated or collinear corners) and leave the convex hull the mesh is loaded as, by up " +
-                             "to " + shortNumber(outside_by) + ": " + triangleList(outside) +
+                             "repeated or collinear corners) and leave the convex hull the mesh is loaded as, by at " +
+                             "least " + shortNumber(outside_by) + ": " + triangleList(outside) +
                              "; a body that touches only them does not collide with the mesh");
     }
     pieces.push_back(Piece::make(std::move(check.hull), PieceKind::kConvex, origin_prefix + ": convex"));

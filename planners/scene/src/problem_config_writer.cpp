@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mddual/defaults.h"
 #include "mddual/scene/problem_config.h"
 #include "problem_config_detail.h"
 #include "scene_detail.h"
@@ -169,6 +170,13 @@ void writeProblemConfig(const ProblemConfig& c, const std::filesystem::path& cfg
   pose(out, "start", c.start, planar);
   pose(out, "goal", c.goal, planar);
   if (c.volume) {
+    // What the reader refuses (the core's coordinate range), refused here.
+    if (!(c.volume->min().cwiseAbs().maxCoeff() <= defaults::kMaxCoordinate &&
+          c.volume->max().cwiseAbs().maxCoeff() <= defaults::kMaxCoordinate)) {
+      throw SceneError("cannot write " + detail::display(cfg) + ": a volume corner is outside the supported range [-" +
+                       detail::formatNumber(defaults::kMaxCoordinate) + ", " +
+                       detail::formatNumber(defaults::kMaxCoordinate) + "]");
+    }
     const char* axes[] = {"x", "y", "z"};
     const bool z = !planar || c.volume->min().z() != 0.0 || c.volume->max().z() != 0.0;
     for (int i = 0; i < (z ? 3 : 2); ++i) number(out, std::string("volume.min.") + axes[i], c.volume->min()[i]);

@@ -243,7 +243,23 @@ TEST(PlannerFactory, ErrorsNameTheProblem) {
         << e.what();
   }
   // Outside the range OMPL declares: a warning only (a range may exceed it).
+  struct Capture : ompl::msg::OutputHandler {
+    void log(const std::string& text, ompl::msg::LogLevel level, const char*, int) override {
+      if (level == ompl::msg::LOG_WARN) warnings += text + "\n";
+    }
+    std::string warnings;
+  } capture;
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::msg::useOutputHandler(&capture);
   EXPECT_EQ(makePlanner("rrt", si, {{"range", "20000"}})->params().getParam("range")->getValue(), "20000");
+  makePlanner("rrt", si, {{"goal_bias", "0.5"}});  // inside: no warning
+  makePlanner("rrt", si, {{"goal_bias", "5"}});
+  ompl::msg::restorePreviousOutputHandler();
+  ompl::msg::setLogLevel(level);
+  EXPECT_EQ(capture.warnings,
+            "planner 'rrt': parameter 'range' = '20000': outside the range OMPL declares for it, [0., 10000.]\n"
+            "planner 'rrt': parameter 'goal_bias' = '5': outside the range OMPL declares for it, [0., 1.]\n");
 }
 
 }  // namespace

@@ -173,10 +173,22 @@ TEST_F(BenchLogs, ProgressDataAndOtherHeaders) {
       << check(no_planner);
   std::string blob = log;
   blob.replace(blob.find("time REAL\nsolved"), 9, "time BLOB");
-  EXPECT_NE(check(blob).find(": line 17: expected run property 1 of planner 1 ('<name> <TYPE>', TYPE one of BOOLEAN, "
-                             "INTEGER, REAL, ENUM, STRING), found 'time BLOB'"),
+  EXPECT_NE(check(blob).find(": line 17: expected run property 1 of planner 1 ('<name> <TYPE>'); the report reads "
+                             "'time' as a number, so its TYPE must be BOOLEAN, INTEGER, REAL, ENUM, DOUBLE, FLOAT "
+                             "or NUMERIC, found 'time BLOB'"),
             std::string::npos)
       << check(blob);
+  // Other types pass (OMPL's informed trees write "best cost DOUBLE"; a
+  // property the report does not read may be of any type).
+  const auto edited = [](std::string text, const std::string& from, const std::string& to) {
+    return text.replace(text.find(from), from.size(), to);
+  };
+  std::string other = edited(log, "2 properties for each run\ntime REAL\nsolved BOOLEAN\n",
+                             "4 properties for each run\ntime REAL\nsolved BOOLEAN\nbest cost DOUBLE\nnote TEXT\n");
+  other = edited(other, "0.1; 1; \n0.2; 0; \n", "0.1; 1; 4.5; a; \n0.2; 0; inf; b c; \n");
+  EXPECT_EQ(check(other), "");
+  const std::string cost = edited(other, "4.5; a;", "cheap; a;");
+  EXPECT_NE(check(cost).find("value 3, 'cheap', is not a number"), std::string::npos) << check(cost);
   std::string text = log;
   text.replace(text.find("0.2; 0; "), 8, "abc; 0; ");
   EXPECT_NE(check(text).find(": line 21: expected run 2 of planner 1 (2 values, each followed by '; '); value 1, "

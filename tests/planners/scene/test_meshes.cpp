@@ -197,7 +197,24 @@ TEST(Meshes, DegenerateTriangleOutsideAConvexMeshIsNamedInAWarning) {
   ASSERT_EQ(info.warnings.size(), 1u);
   const std::string& w = info.warnings[0];
   EXPECT_NE(w.find(file.string() + ": skipped 1 of 14 triangles"), std::string::npos) << w;
-  EXPECT_NE(w.find("leave the convex hull the mesh is loaded as, by up to 3: triangle 13"), std::string::npos) << w;
+  EXPECT_NE(w.find("leave the convex hull the mesh is loaded as, by at least 3: triangle 13"), std::string::npos) << w;
+  // A flat plate (its hull has two faces, +-n): a segment in its plane
+  // beside it is outside too (the face planes alone did not see it).
+  std::vector<Eigen::Vector3d> plate = {{0, 0, 0}, {1, 0, 0},   {1, 1, 0},   {0, 0, 0},    {1, 1, 0},
+                                        {0, 1, 0}, {2, 0.5, 0}, {3, 0.5, 0}, {2.5, 0.5, 0}};
+  const auto flat = dir.write("plate_and_segment.stl", asciiStl(plate));
+  MeshInfo flat_info;
+  EXPECT_EQ(meshPieces(flat, kOnes, kIdentity, {}, &flat_info).size(), 1u);
+  EXPECT_TRUE(flat_info.convex);
+  EXPECT_EQ(flat_info.skipped_triangles, std::vector<int>{2});
+  ASSERT_EQ(flat_info.warnings.size(), 1u);
+  EXPECT_NE(flat_info.warnings[0].find("by at least 2: triangle 2"), std::string::npos) << flat_info.warnings[0];
+  // With mesh_convex_hull the hull is of every corner: the segment is in it.
+  LoadOptions hull;
+  hull.mesh_convex_hull = true;
+  const auto hulled = meshPieces(file, kOnes, kIdentity, hull);
+  ASSERT_EQ(hulled.size(), 1u);
+  EXPECT_NEAR(hulled[0].box.min().x(), -3.0, 1e-9);
 }
 
 TEST(Meshes, ColladaZUpIsConvertedToYUpAsAssimpDoes) {

@@ -414,6 +414,13 @@ TEST(ProblemConfigErrors, VolumeBeyondTheSupportedRange) {
   expectPlanarError("volume.max.x = 50", "volume.max.x = 1e51",
                     {"maze.cfg:14: volume.max.x: 1e+51 is outside the supported range"});
 }
+TEST(ProblemConfigErrors, TheWriterRefusesWhatTheReaderWould) {
+  TempDir dir;
+  ProblemConfig c = readProblemConfig(dir.write("maze.cfg", kPlanar));
+  c.volume->max().x() = 1e51;
+  expectSceneError([&] { writeProblemConfig(c, dir.path() / "far.cfg"); },
+                   {"far.cfg", "a volume corner is outside the supported range"});
+}
 TEST(ProblemConfigErrors, NegativeThreshold) {
   expectPlanarError("threshold = 1e-12", "threshold = -1", {"maze.cfg:16: threshold: must be >= 0"});
 }

@@ -19,9 +19,11 @@ namespace mddual::planning {
 /// ompl::tools::Benchmark::saveResultsToStream writes: header lines, the
 /// setup and optional CPU-info blocks closed, the limits, the enums, and for
 /// each of its planners (at least one) its declared common properties, run
-/// properties (types BOOLEAN, INTEGER, REAL, ENUM or STRING), runs (each with
-/// one value per run property, a number or OMPL's empty, nan or inf unless
-/// the type is STRING) and progress data, ending with ".".
+/// properties ("<name> <TYPE>"; the ones scripts/bench_report.py reads as
+/// numbers, such as time, of a numeric TYPE: BOOLEAN, INTEGER, REAL, ENUM,
+/// DOUBLE, FLOAT or NUMERIC), runs (each with one value per run property, for
+/// a numeric TYPE a number or OMPL's empty, nan or inf) and progress data,
+/// ending with ".".
 /// Throws InvalidInputError "<file>: line <n>: expected <what>, found <the
 /// line | the end of the file> (the log is cut off or is not an OMPL
 /// benchmark log)".

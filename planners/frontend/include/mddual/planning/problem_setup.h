@@ -33,10 +33,12 @@
 //      e.g. longest_valid_segment_fraction), set on the space information
 //      (every key must be one of its parameters, or "sampler"), then the state
 //      space is set up again so that they take effect;
-//   4. the start and goal states (goal threshold: the cfg's, or OMPL.app's
-//      default kDefaultGoalThreshold = 1e-6) and the optimization objective if
-//      the cfg names one (length, max_min_clearance, mechanical_work; with its
-//      cost threshold).
+//   4. the start and goal states, which the checker must find free (the
+//      exact pair test of checkStartAndGoal may call free a state that a
+//      checker, within its precision, calls touching), the goal threshold
+//      (the cfg's, or OMPL.app's default kDefaultGoalThreshold = 1e-6) and the
+//      optimization objective if the cfg names one (length,
+//      max_min_clearance, mechanical_work; with its cost threshold).
 // applyPlannerContext(spec) then sets a planner's own problem.KEY overrides
 // on top of the space parameters, as OMPL.app's ompl_benchmark does in its
 // planner-switch event (space parameters, then the planner's context); values
@@ -155,7 +157,8 @@ class CheckTimer;
 class ProblemSetup {
  public:
   /// Throws InvalidInputError for a space parameter that OMPL's space
-  /// information does not have or rejects, or a bad objective.
+  /// information does not have or rejects, a start or goal the checker finds
+  /// in collision, or a bad objective.
   ProblemSetup(const Problem& problem, CheckerKind checker, const SetupOptions& options = SetupOptions());
   ~ProblemSetup();
   ProblemSetup(const ProblemSetup&) = delete;

@@ -48,8 +48,8 @@ struct LoadOptions {
   /// whose surface is within this distance of the true surface (world units,
   /// > 0).
   double primitive_tolerance = 1e-3;
-  /// A non-convex mesh becomes its convex hull (one piece) instead of its
-  /// triangles.
+  /// A non-convex mesh becomes its convex hull (one piece, the hull of every
+  /// corner, degenerate triangles' included) instead of its triangles.
   bool mesh_convex_hull = false;
   /// A mesh is loaded as one convex piece, its hull, when the hull differs
   /// from it by at most this fraction of its bounding-box diagonal (see
@@ -83,8 +83,10 @@ struct MeshInfo {
   /// error): the mesh was loaded as triangles, and `warnings` says so.
   bool hull_failed = false;
   /// Loaded as triangles: the file indices of the triangles skipped (sorted);
-  /// loaded as one convex piece: those of the skipped triangles that leave
-  /// its hull (the others are inside the solid piece).
+  /// loaded as one convex piece because the mesh is convex: those of the
+  /// skipped triangles that leave its hull (the others are inside the solid
+  /// piece). Empty with mesh_convex_hull (the hull of every corner, the
+  /// degenerate triangles' too).
   std::vector<int> skipped_triangles;
   /// What the user should know about the load, each naming the file: the
   /// skipped triangles (with the largest distance by which they could change
@@ -166,9 +168,9 @@ World loadWorld(const std::filesystem::path& file, const LoadOptions& options = 
 ///     counted in MeshInfo::degenerate_triangles and, when the mesh is loaded
 ///     as triangles, listed in a warning with its index and the largest
 ///     distance a skipped triangle extends from its longest edge; when it is
-///     loaded as one convex piece, a skipped triangle inside the piece is
-///     covered by it, and one that leaves it is listed in a warning with the
-///     distance by which it does;
+///     loaded as one convex piece because it is convex, a skipped triangle
+///     inside the piece is covered by it, and one that leaves it is listed in
+///     a warning with a lower bound of the distance by which it does;
 ///   - when the hull that only decides convexity cannot be built (qhull's
 ///     precision errors on large, nearly coplanar meshes), the mesh is loaded
 ///     as triangles (exact, only slower if it was convex) and a warning says

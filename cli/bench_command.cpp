@@ -588,53 +588,48 @@ constexpr const char* kBenchFooter =
     "goal states are checked (within the bounds, free of the world by the exact test and by each checker).\n"
     "Exit status 2 for bad input.";
 
+/// A text option whose value is kept as given for the command to parse. Given
+/// with an empty value it is an error, not its default (a hostile-input hunt:
+/// `--output ''` wrote to out/bench/<config>/).
+void textOption(CLI::App* app, const std::string& flag, std::string* to, const std::string& help,
+                const std::string& text) {
+  app->add_option_function<std::string>(
+         flag,
+         [flag, to](const std::string& value) {
+           if (value.empty()) throw FatalError(flag + ": an empty value (leave the option out for its default)");
+           *to = value;
+         },
+         help)
+      ->option_text(text);
+}
+
+std::string reportTimeoutHelp() {
+  return "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
+         formatSeconds(kDefaultReportTimeout) + ")";
+}
+
 }  // namespace
 
 void registerBenchCommand(CLI::App& app) {
   auto flags = std::make_shared<BenchFlags>();
-  // An option given with an empty value is an error, not its default (a
-  // hostile-input hunt: `--output ''` wrote to out/bench/<config>/).
-  const auto notEmpty = [](const std::string& flag, std::string* to) {
-    return [flag, to](const std::string& value) {
-      if (value.empty()) throw FatalError(flag + ": an empty value (leave the option out for its default)");
-      *to = value;
-    };
-  };
   CLI::App* sub =
       app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");
   sub->footer(kBenchFooter);
   sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
-  sub->add_option_function<std::string>("--checkers", notEmpty("--checkers", &flags->checkers),
-                                        "comma-separated: mdd, fcl, fcl-continuous (default: all three)")
-      ->option_text("LIST");
-  sub->add_option_function<std::string>(
-         "--planners", notEmpty("--planners", &flags->planners),
-         "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
-         "the cfg's)")
-      ->option_text("LIST");
-  sub->add_option_function<std::string>("--runs", notEmpty("--runs", &flags->runs),
-                                        "runs per planner (default: the cfg's run_count)")
-      ->option_text("N");
-  sub->add_option_function<std::string>("--time-limit", notEmpty("--time-limit", &flags->time_limit),
-                                        "seconds per run (default: the cfg's time_limit)")
-      ->option_text("S");
-  sub->add_option_function<std::string>("--output", notEmpty("--output", &flags->output),
-                                        "output folder (default: out/bench/<config>/)")
-      ->option_text("DIR");
-  sub->add_option_function<std::string>("--shard", notEmpty("--shard", &flags->shard),
-                                        "run only slice I of N of the runs (0 <= I < N)")
-      ->option_text("I/N");
-  sub->add_option_function<std::string>("--seed", notEmpty("--seed", &flags->seed),
-                                        "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)")
-      ->option_text("K");
-  sub->add_option_function<std::string>("--report", notEmpty("--report", &flags->report),
-                                        "only build the database and report from the logs in DIR")
-      ->option_text("DIR");
-  sub->add_option_function<std::string>(
-         "--report-timeout", notEmpty("--report-timeout", &flags->report_timeout),
-         "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
-             formatSeconds(kDefaultReportTimeout) + ")")
-      ->option_text("S");
+  textOption(sub, "--checkers", &flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)",
+             "LIST");
+  textOption(sub, "--planners", &flags->planners,
+             "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
+             "the cfg's)",
+             "LIST");
+  textOption(sub, "--runs", &flags->runs, "runs per planner (default: the cfg's run_count)", "N");
+  textOption(sub, "--time-limit", &flags->time_limit, "seconds per run (default: the cfg's time_limit)", "S");
+  textOption(sub, "--output", &flags->output, "output folder (default: out/bench/<config>/)", "DIR");
+  textOption(sub, "--shard", &flags->shard, "run only slice I of N of the runs (0 <= I < N)", "I/N");
+  textOption(sub, "--seed", &flags->seed,
+             "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)", "K");
+  textOption(sub, "--report", &flags->report, "only build the database and report from the logs in DIR", "DIR");
+  textOption(sub, "--report-timeout", &flags->report_timeout, reportTimeoutHelp(), "S");
   sub->callback([flags] { runBenchCommand(*flags); });
 
   auto dir = std::make_shared<std::string>();
@@ -645,12 +640,7 @@ void registerBenchCommand(CLI::App& app) {
       "Every *.log in DIR is checked first: complete OMPL benchmark logs (a log cut off is named with its line),\n"
       "complete shard sets; a log with the same content as another (a copy) is reported and counted once.");
   report->add_option("dir", *dir, "folder with the logs of mddual bench (all shards)")->required()->option_text("DIR");
-  report
-      ->add_option_function<std::string>(
-          "--timeout", notEmpty("--timeout", timeout.get()),
-          "stop a report step (ompl_benchmark_statistics, bench_report.py) after S seconds (default " +
-              formatSeconds(kDefaultReportTimeout) + ")")
-      ->option_text("S");
+  textOption(report, "--timeout", timeout.get(), reportTimeoutHelp(), "S");
   report->callback([dir, timeout] { runBenchReport(*dir, reportTimeout("--timeout", *timeout)); });
 }
 

@@ -237,6 +237,106 @@ TEST(Polytope, AStraightCornerOfNearlyCoplanarFacetsStaysInEveryLoop) {
   }
 }
 
+/// The support value of the polytope in direction d, and that of its
+/// corners by brute force.
+double support(const ConvexPolytope& p, const Eigen::Vector3d& d) {
+  return d.dot(p.vertex(p.supportVertex(d)));
+}
+double supportBrute(const ConvexPolytope& p, const Eigen::Vector3d& d) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& v : p.vertices()) best = std::max(best, d.dot(v));
+  return best;
+}
+
+TEST(Polytope, PrismEqualsTheHullOfItsCornersForACoplanarBase) {
+  // A heptagon in the plane normal to a tilted axis, away from the origin:
+  // prism() must give the polytope fromPoints gives for the same corners.
+  generators::Rng rng(31);
+  const Eigen::Vector3d axis = generators::randomUnitVector(rng);
+  const Eigen::Quaterniond q = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis);
+  const Eigen::Vector3d centre(3.0, -2.0, 7.5);
+  Points base;
+  for (int i = 0; i < 7; ++i) {
+    const double a = 2.0 * M_PI * i / 7.0 + 0.3;
+    base.push_back(centre + q * Eigen::Vector3d(0.8 * std::cos(a), 0.5 * std::sin(a), 0.0));
+  }
+  const double h = 0.25;
+  const ConvexPolytope p = ConvexPolytope::prism(base, 2.0 * axis, h);  // the axis need not be unit
+  Points corners;
+  for (const Eigen::Vector3d& b : base) {
+    corners.push_back(b + h * axis);
+    corners.push_back(b - h * axis);
+  }
+  const ConvexPolytope ref = ConvexPolytope::fromPoints(corners);
+  EXPECT_EQ(p.numVertices(), 14);
+  EXPECT_EQ(p.numFaces(), ref.numFaces());
+  EXPECT_EQ(p.numEdges(), ref.numEdges());
+  EXPECT_FALSE(p.isFlat());
+  expectWellFormed(p);
+  for (int k = 0; k < 300; ++k) {
+    const Eigen::Vector3d d = generators::randomUnitVector(rng);
+    EXPECT_NEAR(support(p, d), support(ref, d), 1e-12) << "direction " << d.transpose();
+  }
+}
+
+TEST(Polytope, PrismOfALargeBaseIsBuiltWithoutItsHierarchyAndSupportsExactly) {
+  // 2,000 base corners (fromPoints on its corners is quadratic in qhull's
+  // merging of the caps), a base of uneven heights: the prism spans from the
+  // lowest minus h to the highest plus h along the axis.
+  generators::Rng rng(32);
+  Points base;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2.0 * M_PI * i / n;
+    base.emplace_back(0.3 * std::cos(a), 0.3 * std::sin(a), i == 5 ? 0.01 : (i == 900 ? -0.02 : 0.0));
+  }
+  const double h = 1e-3;
+  const ConvexPolytope p = ConvexPolytope::prism(base, Eigen::Vector3d::UnitZ(), h);
+  EXPECT_EQ(p.numVertices(), 2 * n);
+  EXPECT_EQ(p.numFaces(), n + 2);
+  EXPECT_EQ(p.hierarchyDepth(), 0);
+  EXPECT_NEAR(support(p, Eigen::Vector3d::UnitZ()), 0.01 + h, 1e-15);
+  EXPECT_NEAR(support(p, -Eigen::Vector3d::UnitZ()), 0.02 + h, 1e-15);
+  int cold_mismatch = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Eigen::Vector3d d = generators::randomUnitVector(rng);
+    const double brute = supportBrute(p, d);
+    if (std::abs(support(p, d) - brute) > 1e-13) ++cold_mismatch;
+    // Every base point's segment p +- h axis lies inside.
+    const Eigen::Vector3d& b = base[static_cast<std::size_t>(k % n)];
+    EXPECT_LE(d.dot(b) + h * std::abs(d.z()), brute + 1e-13);
+  }
+  EXPECT_EQ(cold_mismatch, 0);
+}
+
+TEST(Polytope, PrismErrorsNameTheProblem) {
+  auto message = [](const Points& base, const Eigen::Vector3d& axis, double h) -> std::string {
+    try {
+      ConvexPolytope::prism(base, axis, h);
+    } catch (const DegenerateGeometryError& e) {
+      return std::string("degenerate: ") + e.what();
+    } catch (const InvalidInputError& e) {
+      return std::string("invalid: ") + e.what();
+    }
+    return "no error";
+  };
+  const Points square{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message(square, z, 0.5), "no error");
+  EXPECT_NE(message({{0, 0, 0}, {1, 0, 0}}, z, 0.5).find("degenerate: polytope prism: 2 base point(s)"),
+            std::string::npos);
+  EXPECT_NE(message({{0, 0, 0}, {1, 0, 0}, {0, nan, 0}}, z, 0.5).find("invalid: polytope: point 2"), std::string::npos);
+  EXPECT_NE(message(square, Eigen::Vector3d::Zero(), 0.5).find("invalid: polytope prism: the axis"), std::string::npos);
+  EXPECT_NE(message(square, Eigen::Vector3d(nan, 0, 1), 0.5).find("not a finite nonzero vector"), std::string::npos);
+  EXPECT_NE(message(square, z, 0.0).find("half height"), std::string::npos);
+  EXPECT_NE(message(square, z, nan).find("half height"), std::string::npos);
+  // Seen along x, the square in the plane z = 0 is a segment.
+  EXPECT_NE(message(square, Eigen::Vector3d::UnitX(), 0.5)
+                .find("degenerate: polytope prism: the 4 base points are collinear"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace mddual
 

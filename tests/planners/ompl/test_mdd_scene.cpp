@@ -591,6 +591,40 @@ TEST(EnlargePiece, HoldsThePieceGrownByDeltaAndTakesTheCubeForTriangles) {
   }
 }
 
+TEST(EnlargePiece, AManyCorneredFlatPieceIsEnlargedAsAPrismThatHoldsItGrownByDelta) {
+  // Flat convex polygons of 17 to 3,000 corners (the 5,000-gon robot took
+  // 7.9 s per enlargement level as its sum with the cube; regression of the
+  // hostile-input hunt), tilted, with sharp and blunt corners: the prism holds
+  // every point within delta of the piece and stays within sqrt(3) delta.
+  testing::Rng rng(testing::seed() * 43);
+  const double delta = 0.01;
+  for (int n : {17, 40, 3000}) {
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7 * n, generators::randomUnitVector(rng)));
+    generators::Points points;
+    for (int i = 0; i < n; ++i) {
+      // An ellipse squeezed to 1:20 (corners turning by up to ~115 degrees
+      // at its ends for n = 17).
+      const double a = 2.0 * M_PI * i / n;
+      points.push_back(q * Eigen::Vector3d(0.4 * std::cos(a), 0.02 * std::sin(a), 0.0) +
+                       Eigen::Vector3d(0.1, 0.2, 0.3));
+    }
+    const scene::Piece piece = scene::Piece::make(ConvexPolytope::fromPoints(points), scene::PieceKind::kConvex,
+                                                  "polygon " + std::to_string(n));
+    ASSERT_TRUE(piece.polytope.isFlat());
+    const scene::Piece grown = enlargePiece(piece, delta);
+    EXPECT_FALSE(grown.polytope.isFlat());
+    // A prism (ConvexPolytope::prism): two caps and one side per cap corner.
+    EXPECT_EQ(grown.polytope.numFaces(), grown.polytope.numVertices() / 2 + 2) << "polygon " << n;
+    for (int m = 0; m < 400; ++m) {
+      const Eigen::Vector3d d = generators::randomUnitVector(rng);
+      const double h = supportValue(piece.polytope, d);
+      const double g = supportValue(grown.polytope, d);
+      EXPECT_GE(g, h + delta - 1e-12) << "polygon " << n << " direction " << d.transpose();
+      EXPECT_LE(g, h + std::sqrt(3.0) * delta) << "polygon " << n << " direction " << d.transpose();
+    }
+  }
+}
+
 TEST(WorldUpdates, BadUpdatesAreRefusedAndLeaveTheSceneAsItWas) {
   const examples::ExampleScene& scene = testing::allScenes()[0];  // primitives
   MddScene mdd(scene.robot, scene.world);

@@ -437,8 +437,11 @@ class MddScene {
 /// `piece` enlarged to contain every point within `delta` of it: the
 /// Minkowski sum with a cube of inradius delta (axes of the piece's frame),
 /// or for a piece of more than three vertices with an icosahedron of that
-/// inradius when its hull has no more vertices than the cube's; a kConvex
-/// piece within sqrt(3) delta of `piece`.
+/// inradius when its hull has no more vertices than the cube's; for a flat
+/// piece of more than 16 vertices, the prism over its polygon grown by delta
+/// in its plane, delta thick on either side (ConvexPolytope::prism: no 3D
+/// hull, whose merging of the sum's two large coplanar faces is quadratic).
+/// A kConvex piece within sqrt(3) delta of `piece`.
 scene::Piece enlargePiece(const scene::Piece& piece, double delta);
 
 /// The oriented box box_R (body frame R) seen at X_WR, grown to hold every

@@ -63,6 +63,46 @@ TEST_P(MotionSoundness, NoMissesAndExactTranslationContacts) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, MotionSoundness, ::testing::Range(0, testing::kSceneCount), testing::sceneParamName);
 
+// A robot of flat convex polygons of many corners, whose enlarged pieces are
+// prisms over the polygons grown in their planes (enlargePiece, the 5,000-gon
+// of the hostile-input hunt): no misses on rotating edges among the blobs.
+TEST(MotionSoundness, FlatManyCorneredRobotPiecesHaveNoMisses) {
+  examples::ExampleScene scene = examples::blobScene(testing::seed());
+  std::vector<scene::Piece> robot;
+  for (int k = 0; k < 2; ++k) {
+    generators::Points points;
+    const int n = k == 0 ? 40 : 24;
+    for (int i = 0; i < n; ++i) {
+      const double a = 2.0 * kPi * i / n;
+      const Eigen::Vector3d p(0.9 * std::cos(a), 0.5 * std::sin(a), 0.0);
+      points.push_back(k == 0 ? p : Eigen::Vector3d(0.3, p.x(), p.y()));  // the second in the plane x = 0.3
+    }
+    robot.push_back(
+        scene::Piece::make(ConvexPolytope::fromPoints(points), scene::PieceKind::kConvex, "disc " + std::to_string(n)));
+  }
+  scene.robot = std::make_shared<scene::RigidBody>(std::move(robot), "discs");
+  const Fixture fx = testing::makeFixture(scene);
+  for (int i = 0; i < 2; ++i) {
+    const ConvexPolytope& grown = fx.mdd->enlargedPiece(0, i).polytope;
+    ASSERT_EQ(grown.numFaces(), grown.numVertices() / 2 + 2) << "robot piece " << i << " is enlarged as a prism";
+  }
+  testing::Rng rng(testing::seed() * 104729);
+  const double extent = (scene.bounds.max() - scene.bounds.min()).head<2>().norm();
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+  EdgeTally rotation;
+  for (int i = 0; i < 1000 * testing::scale(); ++i) {
+    testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+    const double max_length = i % 5 == 1 ? 0.0 : (i % 3 == 0 ? 0.05 : 0.3) * extent;
+    testing::randomEdgeEnd(*fx.space, s1.get(), max_length, true, kPi, rng, s2.get());
+    testing::checkEdge(fx, s1.get(), s2.get(), &rotation);
+  }
+  std::printf("discs rotating %s\n", testing::describe(rotation).c_str());
+  EXPECT_EQ(rotation.misses, 0);
+  EXPECT_EQ(rotation.early, 0);
+  EXPECT_GT(rotation.valid, rotation.edges / 20);
+  EXPECT_LT(rotation.valid, rotation.edges - rotation.edges / 20);
+}
+
 // The dense check skips ahead by half FCL's distance over the largest point
 // speed: sound when half FCL's distance never exceeds the true distance.
 TEST_P(MotionSoundness, DenseCheckPremiseHalfFclDistanceIsALowerBound) {

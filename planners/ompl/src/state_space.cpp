@@ -215,8 +215,18 @@ Eigen::Quaterniond unitQuaternion(const Eigen::Quaterniond& q, const char* what)
 }
 
 /// Raw components of an OMPL quaternion state, as OMPL stores them.
-Eigen::Vector4d rawQuaternion(const ob::SO3StateSpace::StateType& q) {
-  return {q.x, q.y, q.z, q.w};
+/// The dot product of two SO(3) states exactly as SO3StateSpace::interpolate
+/// and arcLength compute it: x, y, z, w added left to right. The sign picks
+/// the way OMPL's slerp turns; for a half-turn it is a few 1e-17, and
+/// Eigen's Vector4d::dot (pairwise, vectorised) gave the opposite sign on
+/// 2.5% of edges q2 = q1 * AngleAxis(pi, random axis): the motion checked
+/// turned the other way from the one OMPL executes (hostile-input hunt).
+double omplQuaternionDot(const ob::SO3StateSpace::StateType& a, const ob::SO3StateSpace::StateType& b) {
+  double dq = a.x * b.x;
+  dq += a.y * b.y;
+  dq += a.z * b.z;
+  dq += a.w * b.w;
+  return dq;
 }
 
 Eigen::Quaterniond toEigen(const ob::SO3StateSpace::StateType& q) {
@@ -472,7 +482,7 @@ EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const
       const auto& r1 = poseState(s1)->as<ob::SE3StateSpace::StateType>()->rotation();
       const auto& r2 = poseState(s2)->as<ob::SE3StateSpace::StateType>()->rotation();
       m.q_start = toEigen(r1);
-      const double dq = rawQuaternion(r1).dot(rawQuaternion(r2));
+      const double dq = omplQuaternionDot(r1, r2);
       // SO3StateSpace's arcLength(): 0 when |dq| > 1 - 1e-9, then interpolate() copies q1.
       if (std::abs(dq) <= 1.0 - kOmplQuaternionTolerance) {
         const double theta = std::acos(std::abs(dq));

@@ -13,6 +13,7 @@
 #include "constants.h"
 #include "mddual/error.h"
 #include "mddual/query.h"
+#include "pair.h"
 
 namespace mddual {
 namespace {
@@ -578,6 +579,9 @@ int Bvh::build(std::vector<std::vector<Eigen::Vector3d>>& points, std::vector<Ei
 // ---- Queries -------------------------------------------------------------------------
 
 bool Bvh::queryBox(const Eigen::AlignedBox3d& box_S, FunctionRef<bool(int)> fn) const {
+  if (!box_S.min().allFinite() || !box_S.max().allFinite()) {
+    throw InvalidInputError("Bvh::queryBox: the box has a non-finite corner");
+  }
   if (empty()) return true;
   ScratchLease s;
   s->stack.clear();
@@ -598,6 +602,9 @@ bool Bvh::queryBox(const Eigen::AlignedBox3d& box_S, FunctionRef<bool(int)> fn) 
 }
 
 bool Bvh::queryObb(const Obb& obb_S, FunctionRef<bool(int)> fn) const {
+  if (!obb_S.centre_F.allFinite() || !obb_S.axes_F.allFinite() || !obb_S.half.allFinite()) {
+    throw InvalidInputError("Bvh::queryObb: the box has a non-finite entry");
+  }
   if (empty()) return true;
   ScratchLease s;
   s->stack.clear();
@@ -620,6 +627,8 @@ bool Bvh::queryObb(const Obb& obb_S, FunctionRef<bool(int)> fn) const {
 bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, double margin_b,
                             FunctionRef<bool(int, int)> fn, BvhStats* stats) {
   if (!(margin_b >= 0.0)) throw InvalidInputError("forEachOverlappingPair: margin_b is negative or NaN");
+  // A NaN pose fails every overlap test: it would report no pair at all.
+  detail::checkPose(X_AB, "X_AB", "forEachOverlappingPair");
   if (a.empty() || b.empty()) return true;
   ScratchLease s;
   PosedNodes posed(b, X_AB, margin_b, *s);
@@ -669,14 +678,14 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
 
 CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& u_A,
                   double max_distance, CastLeafFn leaf, const CastOptions& options, BvhStats* stats) {
-  const double norm = u_A.norm();
-  if (!(norm > 0.0) || !std::isfinite(norm)) throw InvalidInputError("castFirst: the direction is zero or not finite");
+  const Eigen::Vector3d u = detail::unitDirection(u_A, "castFirst");
   if (!(max_distance >= 0.0)) throw InvalidInputError("castFirst: max_distance is negative or NaN");
+  // A NaN pose fails every overlap test: the cast would report no contact.
+  detail::checkPose(X_AB, "X_AB", "castFirst");
   if (!(options.margin_b >= 0.0)) throw InvalidInputError("castFirst: margin_b is negative or NaN");
   if (!(options.stop_within >= 0.0)) throw InvalidInputError("castFirst: stop_within is negative or NaN");
   CastHit hit;
   if (a.empty() || b.empty()) return hit;
-  const Eigen::Vector3d u = u_A / norm;
   const bool hulls = options.use_hulls && options.margin_b == 0.0 && a.numHulls() > 0 && b.numHulls() > 0;
   ScratchLease s;
   PosedNodes posed(b, X_AB, options.margin_b, *s);

@@ -6,7 +6,6 @@
 #include "mddual/error.h"
 
 namespace mddual::detail {
-namespace {
 
 void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) {
   // A hierarchy's queries repeat poses: the identity for world pieces and one
@@ -27,16 +26,17 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
         << " in magnitude (out of the supported range)";
     throw InvalidInputError(msg.str());
   }
-  const bool rotation =
-      finite && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0;
+  if (!finite) {
+    throw InvalidInputError(std::string(query) + ": pose " + name + " has a non-finite " +
+                            (R.allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");
+  }
+  const bool rotation = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0;
   if (!rotation) {
     throw InvalidInputError(std::string(query) + ": pose " + name +
-                            " is not a finite rigid transform (rotation part must be orthonormal)");
+                            " is not a rigid transform (its rotation part must be orthonormal with determinant 1)");
   }
   last_valid = X34;
 }
-
-}  // namespace
 
 PairGeometry::PairGeometry(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
                            const Eigen::Isometry3d& X_WB, const char* query)

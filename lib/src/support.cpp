@@ -17,8 +17,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 
 #include "mddual/defaults.h"
+#include "mddual/error.h"
 #include "mddual/polytope.h"
 #include "qhull_wrapper.h"
 
@@ -57,10 +59,17 @@ bool hullAdjacency(const std::vector<Eigen::Vector3d>& points, std::vector<int>*
   return true;
 }
 
+/// A vertex index outside [0, n) given to a support query: named, not read.
+[[noreturn]] void throwVertexOutOfRange(const char* what, int v, int n) {
+  throw InvalidInputError(std::string(what) + " " + std::to_string(v) + " is not a vertex index (the polytope has " +
+                          std::to_string(n) + " vertices)");
+}
+
 }  // namespace
 
 int ConvexPolytope::supportVertexHillClimb(const Eigen::Vector3d& d_P, int start, SupportStats* stats,
                                            double* gap) const {
+  if (start < 0 || start >= numVertices()) throwVertexOutOfRange("supportVertexHillClimb: start", start, numVertices());
   int best = start;
   double best_value = d_P.dot(vertices_L_[best]);
   int visited = 1;
@@ -167,12 +176,14 @@ int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportS
   // hint wins for coherent queries, the table when the direction moved far
   // (or when there is no hint); the climb then makes the answer exact.
   int start = tableStart(d_P);
+  if (hint >= numVertices()) throwVertexOutOfRange("supportVertex: hint", hint, numVertices());
   if (hint >= 0 && d_P.dot(vertices_L_[hint]) > d_P.dot(vertices_L_[start])) start = hint;
   if (stats != nullptr) stats->vertices_visited += hint >= 0 ? 2 : 1;
   return supportVertexHillClimb(d_P, start, stats, gap);
 }
 
 void ConvexPolytope::supportTies(const Eigen::Vector3d& d_P, int v, double tol, std::vector<int>* out) const {
+  if (v < 0 || v >= numVertices()) throwVertexOutOfRange("supportTies: vertex", v, numVertices());
   const size_t first = out->size();
   const double threshold = d_P.dot(vertices_L_[v]) - tol;
   out->push_back(v);

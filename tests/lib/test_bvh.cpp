@@ -603,7 +603,31 @@ TEST(Bvh, BadInputIsReportedByPieceAndPoint) {
   const Bvh t = Bvh::fromPolytopes({&cube});
   const auto none = [](int, int, double) { return kInf; };
   expectMessage([&] { castFirst(t, t, Eigen::Isometry3d::Identity(), Eigen::Vector3d::Zero(), 1.0, none); },
-                "direction is zero");
+                "must be finite and nonzero");
+  // A NaN or scaled pose failed every volume test: no pair and no contact,
+  // where the answer overlaps everything (hostile-input hunt).
+  Eigen::Isometry3d nan_pose = Eigen::Isometry3d::Identity();
+  nan_pose.translation().y() = std::nan("");
+  expectMessage([&] { castFirst(t, t, nan_pose, Eigen::Vector3d::UnitX(), 1.0, none); }, "non-finite translation");
+  expectMessage([&] { forEachOverlappingPair(t, t, nan_pose, 0.0, [](int, int) { return true; }); },
+                "non-finite translation");
+  Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();
+  scaled.linear() *= 100.0;
+  expectMessage([&] { forEachOverlappingPair(t, t, scaled, 0.0, [](int, int) { return true; }); },
+                "not a rigid transform");
+  expectMessage(
+      [&] {
+        t.queryBox(Eigen::AlignedBox3d(Eigen::Vector3d(std::nan(""), 0, 0), Eigen::Vector3d(1, 1, 1)),
+                   [](int) { return true; });
+      },
+      "non-finite corner");
+  // Directions whose norm under- or overflows are directions all the same.
+  Eigen::Isometry3d apart = Eigen::Isometry3d::Identity();
+  apart.translation().x() = -5.0;
+  const auto first = [&](int, int, double limit) { return limit < 3.0 ? limit : 3.0; };
+  for (const double size : {1e-170, 1.0, 1e200}) {
+    EXPECT_EQ(castFirst(t, t, apart, Eigen::Vector3d(size, 0, 0), 10.0, first).distance, 3.0) << size;
+  }
   expectMessage([&] { castFirst(t, t, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), -1.0, none); },
                 "max_distance");
   for (const double w : {-1.0, std::nan("")}) {

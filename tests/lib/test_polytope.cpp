@@ -248,6 +248,19 @@ double supportBrute(const ConvexPolytope& p, const Eigen::Vector3d& d) {
   return best;
 }
 
+// Vertex indices from the caller are checked, not read out of range (a hint
+// of 8 on a cube read past the vertex array; hostile-input hunt).
+TEST(Polytope, SupportQueriesRefuseVertexIndicesOutOfRange) {
+  const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box({1, 1, 1}));
+  const Eigen::Vector3d d(1, 2, 3);
+  EXPECT_THROW(cube.supportVertex(d, 8), InvalidInputError);
+  EXPECT_THROW(cube.supportVertexHillClimb(d, -1), InvalidInputError);
+  std::vector<int> ties;
+  EXPECT_THROW(cube.supportTies(d, -1, 0.0, &ties), InvalidInputError);
+  EXPECT_THROW(cube.supportTies(d, 8, 0.0, &ties), InvalidInputError);
+  EXPECT_EQ(cube.supportVertex(d, -1), cube.supportVertex(d, 7));  // -1: no hint
+}
+
 TEST(Polytope, PrismEqualsTheHullOfItsCornersForACoplanarBase) {
   // A heptagon in the plane normal to a tilted axis, away from the origin:
   // prism() must give the polytope fromPoints gives for the same corners.

@@ -107,8 +107,12 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
     }
   }
   // lastValid: a bound as fine as OMPL's discrete check's (one of its steps).
-  const double tolerance =
-      query == EdgeQuery::kLastValid ? 1.0 / std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2)) : 0.0;
+  // validSegmentCount asserts that both rotations are within their bounds
+  // (SO2/SO3StateSpace::distance aborted on a yaw of 10 or a quaternion of
+  // norm 2): an s2 out of bounds takes the exact first contact instead.
+  const double tolerance = query == EdgeQuery::kLastValid && bounds_exit == kInf
+                               ? 1.0 / std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2))
+                               : 0.0;
   out = scene_->checkEdge(motion, query, tolerance);
   counters_.addPairQueries(static_cast<std::uint64_t>(out.pair_queries));
   counters_.addSubEdges(static_cast<std::uint64_t>(out.sub_edges));
@@ -148,7 +152,9 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
     countOmpl(true);
     return true;
   }
-  setLastValid(*si_, s1, s2, e.fraction, lastValid);
+  // OMPL's interpolate asserts on an s2 whose quaternion is off unit norm (so
+  // does its discrete validator): such an edge keeps only s1.
+  setLastValid(*si_, s1, s2, space_->omplCanInterpolate(s2) ? e.fraction : 0.0, lastValid);
   countOmpl(false);
   return false;
 }

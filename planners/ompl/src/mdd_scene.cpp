@@ -97,6 +97,24 @@ std::vector<Eigen::Vector3d> grownPolygon(const ConvexPolytope& flat, double r) 
   return corners;
 }
 
+/// A hand-built EdgeMotion that PlanningSpace::motion would never make: a
+/// negative angle read as no rotation at all (the edge's collisions were
+/// missed), a scaled axis or start rotation failed deep in the core.
+void checkMotionArgument(const EdgeMotion& motion) {
+  const auto fail = [](const std::string& what) {
+    throw InvalidInputError("MddScene::checkEdge: the motion's " + what);
+  };
+  if (!(motion.angle >= 0.0) || !std::isfinite(motion.angle)) {
+    fail("angle " + std::to_string(motion.angle) + " must be finite and >= 0 (turn the axis instead)");
+  }
+  if (!motion.p_start.allFinite() || !motion.p_end.allFinite()) fail("positions must be finite");
+  if (!(std::abs(motion.q_start.norm() - 1.0) < 1e-9)) fail("q_start must be a unit quaternion");
+  if (!((motion.R_start - motion.q_start.toRotationMatrix()).cwiseAbs().maxCoeff() < 1e-9)) {
+    fail("R_start must be q_start as a matrix");
+  }
+  if (motion.rotates() && !(std::abs(motion.axis_R.norm() - 1.0) < 1e-9)) fail("axis_R must be a unit vector");
+}
+
 }  // namespace
 
 scene::Piece enlargePiece(const scene::Piece& piece, double delta) {
@@ -149,6 +167,7 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
                    const MddSceneOptions& options)
     : robot_(std::move(robot)), world_(std::move(world)) {
   if (!robot_) throw InvalidInputError("MddScene: the robot is null");
+  if (robot_->pieces().empty()) throw InvalidInputError("MddScene: the robot '" + robot_->name() + "' has no pieces");
   if (!world_) throw InvalidInputError("MddScene: the world is null");
   const double r = robot_->radius();
   if (!std::isfinite(options.rotation_tolerance)) {
@@ -461,6 +480,7 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
     throw InvalidInputError("MddScene::checkEdge: fraction_tolerance must be in [0, 1] (got " +
                             std::to_string(fraction_tolerance) + ")");
   }
+  checkMotionArgument(motion);
   const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
   // Validity: a few states first (the end, the middle; on rotating edges

@@ -514,6 +514,13 @@ bool PlanningSpace::positionInBounds(const Eigen::Vector3d& p) const {
   return true;
 }
 
+bool PlanningSpace::omplCanInterpolate(const ob::State* state) const {
+  if (kind_ != SpaceKind::kSE3) return true;
+  const auto& q = poseState(state)->as<ob::SE3StateSpace::StateType>()->rotation();
+  const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  return std::abs(norm - 1.0) < kOmplQuaternionTolerance;
+}
+
 double PlanningSpace::boundsExitFraction(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) const {
   double exit = kInf;
   for (int k = 0; k < position_dims_; ++k)

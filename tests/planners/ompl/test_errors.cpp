@@ -10,6 +10,7 @@
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/planning/clearance.h"
+#include "mddual/planning/scene_distance.h"
 #include "test_support.h"
 
 namespace mddual::planning {
@@ -115,6 +116,84 @@ TEST(Errors, Queries) {
   expectError([&] { mdd.sweepSet(0, X, Eigen::Vector3d::Zero(), 1.0, true); }, "direction is zero");
   // A zero translation is a state check, not an error.
   EXPECT_FALSE(mdd.sweep(X, Eigen::Vector3d::Zero()).start_collides);
+}
+
+// Hostile-input hunt (helper): a NaN pose missed every box and volume test
+// and came back free or infinitely far; it is an error, as in isValid.
+TEST(Errors, NonFinitePosesAreErrorsNotFreeSpace) {
+  const examples::ExampleScene scene = examples::blobScene(testing::seed());
+  const MddScene mdd(scene.robot, scene.world);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.translation().x() = kNaN;
+  expectError([&] { mdd.collides(X); }, "non-finite translation");
+  expectError([&] { mdd.sweep(X, Eigen::Vector3d::UnitX()); }, "non-finite translation");
+  expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX()); }, "non-finite translation");
+  expectError([&] { sceneDistance(mdd, X); }, "non-finite");
+  X.translation().x() = 0.0;
+  X.linear()(1, 2) = kNaN;
+  expectError([&] { mdd.collides(X); }, "non-finite rotation");
+  expectError([&] { sceneDistance(mdd, X); }, "non-finite");
+  X.linear() = 2.0 * Eigen::Matrix3d::Identity();
+  expectError([&] { mdd.collides(X); }, "not a rigid transform");
+  const testing::Fixture fx = testing::makeFixture(scene);
+  ob::ScopedState<> s(fx.space->stateSpace());
+  fx.space->setPose(Eigen::Isometry3d::Identity(), s.get());
+  s->as<ob::SE3StateSpace::StateType>()->setX(kNaN);
+  expectError([&] { fx.mdd_checker->clearance(s.get()); }, "non-finite");
+}
+
+// Hand-built motions PlanningSpace::motion never makes: a negative angle was
+// read as no rotation (its collisions missed), a scaled axis failed deep in
+// the core; and a robot without pieces was free everywhere.
+TEST(Errors, EdgeMotionsAndRobotsThatCannotBeChecked) {
+  const examples::ExampleScene scene = examples::blobScene(testing::seed());
+  const MddScene mdd(scene.robot, scene.world);
+  EdgeMotion m;
+  m.p_end = Eigen::Vector3d(1, 0, 0);
+  m.X_end.translation() = m.p_end;
+  m.angle = -2.0;
+  expectError([&] { mdd.checkEdge(m, EdgeQuery::kValidity); }, "angle");
+  m.angle = kNaN;
+  expectError([&] { mdd.checkEdge(m, EdgeQuery::kFirstContact); }, "angle");
+  m.angle = 1.0;
+  m.axis_R = Eigen::Vector3d(0, 0, 2);
+  expectError([&] { mdd.checkEdge(m, EdgeQuery::kValidity); }, "axis_R must be a unit vector");
+  m.axis_R = Eigen::Vector3d::UnitZ();
+  m.R_start = 2.0 * Eigen::Matrix3d::Identity();
+  expectError([&] { mdd.checkEdge(m, EdgeQuery::kValidity); }, "R_start");
+  m.R_start.setIdentity();
+  m.p_start.y() = kNaN;
+  expectError([&] { mdd.checkEdge(m, EdgeQuery::kValidity); }, "positions must be finite");
+  m.p_start.y() = 0.0;
+  EXPECT_NO_THROW(mdd.checkEdge(m, EdgeQuery::kValidity));
+  expectError([&] { MddScene(std::make_shared<scene::RigidBody>(), scene.world); }, "has no pieces");
+}
+
+// lastValid toward a state whose rotation is out of bounds: OMPL's
+// validSegmentCount (SE(2): yaw 10) and interpolate (SE(3): quaternion of
+// norm 2) assert on it; the edge is invalid and lastValid a valid state.
+TEST(Errors, LastValidTowardARotationOutOfBoundsDoesNotAbort) {
+  const examples::ExampleScene scene = examples::blobScene(testing::seed());
+  for (SpaceKind kind : {SpaceKind::kSE2, SpaceKind::kSE3}) {
+    const testing::Fixture fx = testing::makeFixture(scene, kind);
+    testing::Rng rng(testing::seed() * 3);
+    ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+    testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+    fx.si->copyState(s2.get(), s1.get());
+    if (kind == SpaceKind::kSE2) {
+      s2->as<ob::SE2StateSpace::StateType>()->setYaw(10.0);
+    } else {
+      auto& q = s2->as<ob::SE3StateSpace::StateType>()->rotation();
+      q.x = 0.0, q.y = 0.0, q.z = 0.0, q.w = 2.0;
+    }
+    ASSERT_FALSE(fx.si->satisfiesBounds(s2.get()));
+    std::pair<ob::State*, double> last_valid(last.get(), -1.0);
+    EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), last_valid)) << toString(kind);
+    EXPECT_GE(last_valid.second, 0.0);
+    EXPECT_LE(last_valid.second, 1.0);
+    EXPECT_TRUE(fx.si->isValid(last.get())) << toString(kind);
+    EXPECT_TRUE(fx.mdd_motion->firstInvalid(s1.get(), s2.get(), EdgeQuery::kLastValid).collides);
+  }
 }
 
 TEST(Errors, ExampleScenes) {

@@ -232,7 +232,13 @@ void PolytopeBuilder::buildPrism(const std::vector<Eigen::Vector3d>& base_P, con
   for (double h : {lo, hi}) {
     for (int j : ring) corners_P_.push_back(c + planar[j].x() * e1 + planar[j].y() * e2 + h * n);
   }
-  checkPoints(corners_P_);
+  try {
+    checkPoints(corners_P_);
+  } catch (const InvalidInputError& e) {
+    std::ostringstream msg;
+    msg << "polytope prism: the half height " << half_height << " takes its corners out of range (" << e.what() << ")";
+    throw InvalidInputError(msg.str());
+  }
   const std::vector<Eigen::Vector3d> points = validateAndCentre(corners_P_);
   std::vector<Face> faces;
   faces.reserve(static_cast<std::size_t>(m) + 2);

@@ -344,6 +344,8 @@ TEST(Polytope, PrismErrorsNameTheProblem) {
   EXPECT_NE(message(square, Eigen::Vector3d(nan, 0, 1), 0.5).find("not a finite nonzero vector"), std::string::npos);
   EXPECT_NE(message(square, z, 0.0).find("half height"), std::string::npos);
   EXPECT_NE(message(square, z, nan).find("half height"), std::string::npos);
+  EXPECT_NE(message(square, z, 1e300).find("invalid: polytope prism: the half height 1e+300 takes its corners"),
+            std::string::npos);
   // Seen along x, the square in the plane z = 0 is a segment.
   EXPECT_NE(message(square, Eigen::Vector3d::UnitX(), 0.5)
                 .find("degenerate: polytope prism: the 4 base points are collinear"),

@@ -10,11 +10,12 @@ namespace mddual::planning {
 
 DirectedClearance directedClearance(const MddScene& scene, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& d_W,
                                     double max_distance) {
-  const double n = d_W.norm();
-  if (!(n > 0.0) || !std::isfinite(n))
+  // Divided by its largest coordinate first, as MddScene::sweep does.
+  const double largest = d_W.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0) || !d_W.allFinite())
     throw InvalidInputError("directedClearance: the direction is zero or not finite");
   if (!(max_distance >= 0.0)) throw InvalidInputError("directedClearance: max_distance is negative or NaN");
-  const Eigen::Vector3d u = d_W / n;
+  const Eigen::Vector3d u = (d_W / largest).normalized();
 
   DirectedClearance out;
   const SweepResult sweep = scene.sweepSet(0, X_WR, u, max_distance, /*first_contact=*/true);

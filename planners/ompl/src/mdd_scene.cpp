@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "constants.h"
@@ -37,6 +38,9 @@ constexpr int kPrismEnlargeMinVertices = 16;
 constexpr double kGrownPolygonMaxTurn = 3.14159265358979323846 / 3.0;
 /// Smallest delta relative to the robot radius.
 constexpr double kMinRotationToleranceRel = 1e-6;
+/// Largest delta relative to the robot radius: beyond, the enlarged pieces
+/// only waste queries (and at 1e60 left the supported coordinate range).
+constexpr double kMaxRotationToleranceRel = 1e6;
 constexpr int kMaxRefinementLevels = 8;
 
 /// Vertices of an icosahedron with edge length 2 and its inradius.
@@ -174,9 +178,18 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
     throw InvalidInputError("MddScene: rotation_tolerance is not finite");
   }
   delta_ = options.rotation_tolerance > 0.0 ? options.rotation_tolerance : kDefaultRotationToleranceRel * r;
+  const auto text = [](double x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof(buffer), "%.6g", x);  // std::to_string wrote 1e-300 as 0.000000
+    return std::string(buffer);
+  };
   if (delta_ < kMinRotationToleranceRel * r) {
-    throw InvalidInputError("MddScene: rotation_tolerance " + std::to_string(delta_) +
-                            " is below 1e-6 of the robot radius " + std::to_string(r));
+    throw InvalidInputError("MddScene: rotation_tolerance " + text(delta_) + " is below 1e-6 of the robot radius " +
+                            text(r));
+  }
+  if (delta_ > kMaxRotationToleranceRel * r) {
+    throw InvalidInputError("MddScene: rotation_tolerance " + text(delta_) + " is above 1e6 times the robot radius " +
+                            text(r) + " (every rotating edge would be refined from pieces grown beyond the scene)");
   }
   if (options.refinement_levels < 0 || options.refinement_levels > kMaxRefinementLevels) {
     throw InvalidInputError("MddScene: refinement_levels " + std::to_string(options.refinement_levels) +
@@ -387,12 +400,14 @@ SweepResult MddScene::sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d
 SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
                                bool first_contact, double stop_within) const {
   SweepResult result;
-  const double n = v_W.norm();
-  if (!(n > 0.0) || !std::isfinite(n)) {
+  // Divided by its largest coordinate first: |v| under- or overflows for
+  // directions such as [1e-200, 0, 0] (the core's rule, pair.cpp).
+  const double largest = v_W.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0) || !v_W.allFinite()) {
     throw InvalidInputError("MddScene::sweep: the direction is zero or not finite");
   }
   if (!(max_distance >= 0.0)) throw InvalidInputError("MddScene::sweep: max_distance is negative or NaN");
-  const Eigen::Vector3d u = v_W / n;
+  const Eigen::Vector3d u = (v_W / largest).normalized();
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();
   CastOptions options;

@@ -214,7 +214,6 @@ Eigen::Quaterniond unitQuaternion(const Eigen::Quaterniond& q, const char* what)
   return Eigen::Quaterniond(q.coeffs() / n);
 }
 
-/// Raw components of an OMPL quaternion state, as OMPL stores them.
 /// The dot product of two SO(3) states exactly as SO3StateSpace::interpolate
 /// and arcLength compute it: x, y, z, w added left to right. The sign picks
 /// the way OMPL's slerp turns; for a half-turn it is a few 1e-17, and

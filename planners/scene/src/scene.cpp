@@ -218,6 +218,12 @@ void World::movePiece(int id, const Eigen::Isometry3d& X_WP) {
     throw InvalidInputError("World '" + name_ + "': movePiece: the pose of piece " + std::to_string(id) +
                             " has a non-finite entry");
   }
+  // "Moved rigidly": a scaled or reflected pose would change the piece's shape.
+  const Eigen::Matrix3d& R = X_WP.linear();
+  if (!((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0)) {
+    throw InvalidInputError("World '" + name_ + "': movePiece: the pose of piece " + std::to_string(id) +
+                            " is not a rigid transform (its rotation part must be orthonormal with determinant 1)");
+  }
   Piece& piece = pieces_[static_cast<std::size_t>(index)];
   const auto it = moved_.find(id);
   const ConvexPolytope& reference = it == moved_.end() ? piece.polytope : it->second.reference;

@@ -114,6 +114,20 @@ TEST(Errors, Queries) {
   expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX(), -1.0); }, "max_distance");
   expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX(), kNaN); }, "max_distance");
   expectError([&] { mdd.sweepSet(0, X, Eigen::Vector3d::Zero(), 1.0, true); }, "direction is zero");
+  // Directions whose norm under- or overflows are directions all the same.
+  for (const double size : {1e-200, 1e200}) {
+    EXPECT_EQ(directedClearance(mdd, X, Eigen::Vector3d(size, 0, 0)).distance,
+              directedClearance(mdd, X, Eigen::Vector3d::UnitX()).distance)
+        << size;
+    EXPECT_EQ(mdd.sweep(X, Eigen::Vector3d(0, size, 0)).distance, mdd.sweep(X, Eigen::Vector3d::UnitY()).distance);
+  }
+  // rotation_tolerance: printed as given (1e-300 was "0.000000"), and at most
+  // 1e6 robot radii (1e60 failed later in a query, naming a polytope point).
+  MddSceneOptions tiny;
+  tiny.rotation_tolerance = 1e-300;
+  expectError([&] { MddScene(scene.robot, scene.world, tiny); }, "rotation_tolerance 1e-300 is below");
+  tiny.rotation_tolerance = 1e60;
+  expectError([&] { MddScene(scene.robot, scene.world, tiny); }, "above 1e6 times the robot radius");
   // A zero translation is a state check, not an error.
   EXPECT_FALSE(mdd.sweep(X, Eigen::Vector3d::Zero()).start_collides);
 }

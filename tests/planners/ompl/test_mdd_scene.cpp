@@ -636,6 +636,12 @@ TEST(WorldUpdates, BadUpdatesAreRefusedAndLeaveTheSceneAsItWas) {
   nan.translation().y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(mdd.moveWorldPiece(4, nan), InvalidInputError);
   EXPECT_THROW(mdd.moveWorldPiece(-1, Eigen::Isometry3d::Identity()), InvalidInputError);
+  Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();
+  scaled.linear() *= 2.0;  // not rigid: it would grow the piece (hostile-input hunt)
+  EXPECT_THROW(mdd.moveWorldPiece(4, scaled), InvalidInputError);
+  Eigen::Isometry3d mirrored = Eigen::Isometry3d::Identity();
+  mirrored.linear()(0, 0) = -1.0;
+  EXPECT_THROW(mdd.moveWorldPiece(4, mirrored), InvalidInputError);
   // A piece without a polytope is refused before anything changes; a valid
   // piece added after it is seen by every query (review finding: the bad
   // piece used to stay in the world and block the trees' refresh).

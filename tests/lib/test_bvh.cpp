@@ -613,8 +613,7 @@ TEST(Bvh, BadInputIsReportedByPieceAndPoint) {
                 "non-finite translation");
   Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();
   scaled.linear() *= 100.0;
-  expectMessage([&] { forEachOverlappingPair(t, t, scaled, 0.0, [](int, int) { return true; }); },
-                "not a rigid transform");
+  expectMessage([&] { castFirst(t, t, scaled, Eigen::Vector3d::UnitX(), 1.0, none); }, "not a rigid transform");
   expectMessage(
       [&] {
         t.queryBox(Eigen::AlignedBox3d(Eigen::Vector3d(std::nan(""), 0, 0), Eigen::Vector3d(1, 1, 1)),

@@ -579,8 +579,8 @@ int Bvh::build(std::vector<std::vector<Eigen::Vector3d>>& points, std::vector<Ei
 // ---- Queries -------------------------------------------------------------------------
 
 bool Bvh::queryBox(const Eigen::AlignedBox3d& box_S, FunctionRef<bool(int)> fn) const {
-  if (!box_S.min().allFinite() || !box_S.max().allFinite()) {
-    throw InvalidInputError("Bvh::queryBox: the box has a non-finite corner");
+  if (box_S.min().hasNaN() || box_S.max().hasNaN()) {  // infinite corners: an unbounded query
+    throw InvalidInputError("Bvh::queryBox: the box has a NaN corner");
   }
   if (empty()) return true;
   ScratchLease s;
@@ -602,8 +602,8 @@ bool Bvh::queryBox(const Eigen::AlignedBox3d& box_S, FunctionRef<bool(int)> fn) 
 }
 
 bool Bvh::queryObb(const Obb& obb_S, FunctionRef<bool(int)> fn) const {
-  if (!obb_S.centre_F.allFinite() || !obb_S.axes_F.allFinite() || !obb_S.half.allFinite()) {
-    throw InvalidInputError("Bvh::queryObb: the box has a non-finite entry");
+  if (obb_S.centre_F.hasNaN() || obb_S.axes_F.hasNaN() || obb_S.half.hasNaN()) {
+    throw InvalidInputError("Bvh::queryObb: the box has a NaN entry");
   }
   if (empty()) return true;
   ScratchLease s;
@@ -686,7 +686,11 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
   const Eigen::Vector3d u = detail::unitDirection(u_A, "castFirst");
   if (!(max_distance >= 0.0)) throw InvalidInputError("castFirst: max_distance is negative or NaN");
   // A NaN pose fails every overlap test: the cast would report no contact.
-  detail::checkPose(X_AB, "X_AB", "castFirst");
+  // Finiteness only, as in forEachOverlappingPair (bvh.h).
+  if (!X_AB.matrix().topRows<3>().allFinite()) {
+    throw InvalidInputError(std::string("castFirst: pose X_AB has a non-finite ") +
+                            (X_AB.linear().allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");
+  }
   if (!(options.margin_b >= 0.0)) throw InvalidInputError("castFirst: margin_b is negative or NaN");
   if (!(options.stop_within >= 0.0)) throw InvalidInputError("castFirst: stop_within is negative or NaN");
   CastHit hit;

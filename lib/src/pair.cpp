@@ -6,6 +6,7 @@
 #include "mddual/error.h"
 
 namespace mddual::detail {
+namespace {
 
 void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) {
   // A hierarchy's queries repeat poses: the identity for world pieces and one
@@ -37,6 +38,8 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
   }
   last_valid = X34;
 }
+
+}  // namespace
 
 PairGeometry::PairGeometry(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
                            const Eigen::Isometry3d& X_WB, const char* query)

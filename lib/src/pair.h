@@ -89,12 +89,6 @@ class PairGeometry {
 /// the planning layer's directed clearance).
 void checkMaxDistance(double max_distance, const char* query);
 
-/// Checks that X is a finite rigid transform with a translation within
-/// defaults::kMaxCoordinate (InvalidInputError naming `query` and the pose's
-/// `name` otherwise). The identity and the last pose this thread accepted
-/// pass on an exact comparison.
-void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query);
-
 /// Checks a direction (finite, nonzero) and returns it normalised; `query`
 /// names the caller in the error.
 Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query);

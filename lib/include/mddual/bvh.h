@@ -270,7 +270,8 @@ using CastLeafFn = FunctionRef<double(int piece_a, int piece_b, double limit)>;
 /// max_distance (the same as calling leaf on every pair when leaf reports only
 /// contacts of the pieces), or with first_contact = false the first one found.
 /// Throws InvalidInputError for a zero or non-finite u_A, a negative or NaN
-/// max_distance or options.stop_within.
+/// max_distance or options.stop_within, and an X_AB with a non-finite entry
+/// (rigidity is left to the pair queries, as in forEachOverlappingPair).
 CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, const Eigen::Vector3d& u_A,
                   double max_distance, CastLeafFn leaf, const CastOptions& options = CastOptions(),
                   BvhStats* stats = nullptr);

@@ -107,10 +107,11 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
     }
   }
   // lastValid: a bound as fine as OMPL's discrete check's (one of its steps).
-  // validSegmentCount asserts that both rotations are within their bounds
+  // validSegmentCount asserts that every rotation is within its bounds
   // (SO2/SO3StateSpace::distance aborted on a yaw of 10 or a quaternion of
-  // norm 2): an s2 out of bounds takes the exact first contact instead.
-  const double tolerance = query == EdgeQuery::kLastValid && bounds_exit == kInf
+  // norm 2): an s2 with a rotation out of bounds takes the exact first
+  // contact instead (s1 satisfies the bounds, checked above).
+  const double tolerance = query == EdgeQuery::kLastValid && space_->rotationsWithinBounds(s2)
                                ? 1.0 / std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2))
                                : 0.0;
   out = scene_->checkEdge(motion, query, tolerance);
@@ -153,8 +154,9 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
     return true;
   }
   // OMPL's interpolate asserts on an s2 whose quaternion is off unit norm (so
-  // does its discrete validator): such an edge keeps only s1.
-  setLastValid(*si_, s1, s2, space_->omplCanInterpolate(s2) ? e.fraction : 0.0, lastValid);
+  // does its discrete validator): an edge toward a rotation out of bounds
+  // keeps only s1.
+  setLastValid(*si_, s1, s2, space_->rotationsWithinBounds(s2) ? e.fraction : 0.0, lastValid);
   countOmpl(false);
   return false;
 }

@@ -101,6 +101,16 @@ std::vector<Eigen::Vector3d> grownPolygon(const ConvexPolytope& flat, double r) 
   return corners;
 }
 
+/// A NaN pose fails every volume test and so reached no pair: "free" (also
+/// in an empty world). Finiteness only (12 comparisons); the pair queries
+/// check rigidity.
+void checkFinitePose(const Eigen::Isometry3d& X_WR, const char* query) {
+  if (!X_WR.matrix().topRows<3>().allFinite()) {
+    throw InvalidInputError(std::string(query) + ": the robot pose X_WR has a non-finite " +
+                            (X_WR.linear().allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");
+  }
+}
+
 /// A hand-built EdgeMotion that PlanningSpace::motion would never make: a
 /// negative angle read as no rotation at all (the edge's collisions were
 /// missed), a scaled axis or start rotation failed deep in the core.
@@ -113,7 +123,9 @@ void checkMotionArgument(const EdgeMotion& motion) {
   }
   if (!motion.p_start.allFinite() || !motion.p_end.allFinite()) fail("positions must be finite");
   if (!(std::abs(motion.q_start.norm() - 1.0) < 1e-9)) fail("q_start must be a unit quaternion");
-  if (!((motion.R_start - motion.q_start.toRotationMatrix()).cwiseAbs().maxCoeff() < 1e-9)) {
+  // 1e-6: a gross mismatch (a scaled matrix, another rotation), not the
+  // round-off between a rotation accepted within 1e-9 and its quaternion.
+  if (!((motion.R_start - motion.q_start.toRotationMatrix()).cwiseAbs().maxCoeff() < 1e-6)) {
     fail("R_start must be q_start as a matrix");
   }
   if (motion.rotates() && !(std::abs(motion.axis_R.norm() - 1.0) < 1e-9)) fail("axis_R must be a unit vector");
@@ -341,6 +353,7 @@ bool MddScene::collides(const Eigen::Isometry3d& X_WR, int* pair_queries, PieceC
 }
 
 bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const {
+  checkFinitePose(X_WR, "MddScene::collides");
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
   int queries = 0;
@@ -399,6 +412,7 @@ SweepResult MddScene::sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d
 
 SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
                                bool first_contact, double stop_within) const {
+  checkFinitePose(X_WR, "MddScene::sweep");
   SweepResult result;
   // Divided by its largest coordinate first: |v| under- or overflows for
   // directions such as [1e-200, 0, 0] (the core's rule, pair.cpp).

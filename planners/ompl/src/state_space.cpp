@@ -25,6 +25,11 @@ using detail::kPi;
 /// OMPL's MAX_QUATERNION_NORM_ERROR (SO3StateSpace.cpp): below 1 - this, the
 /// slerp of SO3StateSpace::interpolate is replaced by a copy of the start.
 constexpr double kOmplQuaternionTolerance = 1e-9;
+/// Below this |q1 . q2| (a half-turn within about 2e-12 rad), the way OMPL's
+/// slerp turns is read from its own midpoint, not from the dot's sign: the
+/// dot of a half-turn is round-off, which another build of OMPL could round
+/// differently.
+constexpr double kHalfTurnDotAmbiguity = 1e-12;
 /// setPose(): how far a pose may be from the space's poses (rotation matrix
 /// entries, and z relative to 1 + |p|).
 constexpr double kPoseTolerance = 1e-9;
@@ -487,7 +492,19 @@ EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const
         const double theta = std::acos(std::abs(dq));
         Eigen::Quaterniond q1 = toEigen(r1);
         Eigen::Quaterniond q2 = toEigen(r2);
-        if (dq < 0.0) q2.coeffs() = -q2.coeffs();
+        // Near a half-turn the sign is a few 1e-17 and, were OMPL built with
+        // fused multiply-adds (another CPU, other flags), could differ from
+        // ours: OMPL's own midpoint tells which way it turns (it is
+        // (q1 +- q2) / sqrt(2), at 0.71 from +-q2, far from any tie).
+        bool negate = dq < 0.0;
+        if (std::abs(dq) < kHalfTurnDotAmbiguity) {
+          ob::State* mid = space_->allocState();
+          space_->interpolate(s1, s2, 0.5, mid);
+          const auto& rm = poseState(mid)->as<ob::SE3StateSpace::StateType>()->rotation();
+          negate = omplQuaternionDot(rm, r2) < 0.0;
+          space_->freeState(mid);
+        }
+        if (negate) q2.coeffs() = -q2.coeffs();
         const Eigen::Quaterniond rel = q1.conjugate() * q2;  // w >= 0: the shorter arc
         const double n = rel.vec().norm();
         if (n > 0.0) {
@@ -513,11 +530,28 @@ bool PlanningSpace::positionInBounds(const Eigen::Vector3d& p) const {
   return true;
 }
 
-bool PlanningSpace::omplCanInterpolate(const ob::State* state) const {
-  if (kind_ != SpaceKind::kSE3) return true;
-  const auto& q = poseState(state)->as<ob::SE3StateSpace::StateType>()->rotation();
-  const double norm = std::sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
-  return std::abs(norm - 1.0) < kOmplQuaternionTolerance;
+namespace {
+
+/// Whether every SO(2) and SO(3) component of `state` (the space itself or
+/// any component of a compound space, at any depth) satisfies its bounds.
+bool rotationComponentsWithinBounds(const ob::StateSpace& space, const ob::State* state) {
+  if (dynamic_cast<const ob::SO2StateSpace*>(&space) != nullptr ||
+      dynamic_cast<const ob::SO3StateSpace*>(&space) != nullptr) {
+    return space.satisfiesBounds(state);
+  }
+  if (const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space)) {
+    const auto* cs = state->as<ob::CompoundState>();
+    for (unsigned int i = 0; i < c->getSubspaceCount(); ++i) {
+      if (!rotationComponentsWithinBounds(*c->getSubspace(i), cs->components[i])) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool PlanningSpace::rotationsWithinBounds(const ob::State* state) const {
+  return rotationComponentsWithinBounds(*space_, state);
 }
 
 double PlanningSpace::boundsExitFraction(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) const {

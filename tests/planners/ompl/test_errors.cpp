@@ -114,12 +114,14 @@ TEST(Errors, Queries) {
   expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX(), -1.0); }, "max_distance");
   expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX(), kNaN); }, "max_distance");
   expectError([&] { mdd.sweepSet(0, X, Eigen::Vector3d::Zero(), 1.0, true); }, "direction is zero");
-  // Directions whose norm under- or overflows are directions all the same.
+  // Directions whose norm under- or overflows are directions all the same
+  // (the wall is at x = 50: 49.9 from the cube). sweep's v is a displacement:
+  // sweepSet takes the direction.
+  const double to_wall = directedClearance(mdd, X, Eigen::Vector3d::UnitX()).distance;
+  EXPECT_NEAR(to_wall, 49.9, 1e-9);
   for (const double size : {1e-200, 1e200}) {
-    EXPECT_EQ(directedClearance(mdd, X, Eigen::Vector3d(size, 0, 0)).distance,
-              directedClearance(mdd, X, Eigen::Vector3d::UnitX()).distance)
-        << size;
-    EXPECT_EQ(mdd.sweep(X, Eigen::Vector3d(0, size, 0)).distance, mdd.sweep(X, Eigen::Vector3d::UnitY()).distance);
+    EXPECT_EQ(directedClearance(mdd, X, Eigen::Vector3d(size, 0, 0)).distance, to_wall) << size;
+    EXPECT_EQ(mdd.sweepSet(0, X, Eigen::Vector3d(size, 0, 0), kInf, true).distance, to_wall) << size;
   }
   // rotation_tolerance: printed as given (1e-300 was "0.000000"), and at most
   // 1e6 robot radii (1e60 failed later in a query, naming a polytope point).
@@ -139,16 +141,21 @@ TEST(Errors, NonFinitePosesAreErrorsNotFreeSpace) {
   const MddScene mdd(scene.robot, scene.world);
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation().x() = kNaN;
-  expectError([&] { mdd.collides(X); }, "non-finite translation");
-  expectError([&] { mdd.sweep(X, Eigen::Vector3d::UnitX()); }, "non-finite translation");
+  expectError([&] { mdd.collides(X); }, "MddScene::collides: the robot pose X_WR has a non-finite translation");
+  expectError([&] { mdd.sweep(X, Eigen::Vector3d::UnitX()); }, "MddScene::sweep: the robot pose X_WR");
   expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX()); }, "non-finite translation");
   expectError([&] { sceneDistance(mdd, X); }, "non-finite");
   X.translation().x() = 0.0;
   X.linear()(1, 2) = kNaN;
   expectError([&] { mdd.collides(X); }, "non-finite rotation");
   expectError([&] { sceneDistance(mdd, X); }, "non-finite");
-  X.linear() = 2.0 * Eigen::Matrix3d::Identity();
+  X.linear() = 2.0 * Eigen::Matrix3d::Identity();  // refused by the pair queries
   expectError([&] { mdd.collides(X); }, "not a rigid transform");
+  // An empty world is free everywhere, but not for a NaN pose.
+  const MddScene empty(scene.robot, std::make_shared<scene::World>());
+  X = Eigen::Isometry3d::Identity();
+  X.translation().z() = kNaN;
+  expectError([&] { empty.collides(X); }, "non-finite translation");
   const testing::Fixture fx = testing::makeFixture(scene);
   ob::ScopedState<> s(fx.space->stateSpace());
   fx.space->setPose(Eigen::Isometry3d::Identity(), s.get());

@@ -602,8 +602,8 @@ TEST(EnlargePiece, AManyCorneredFlatPieceIsEnlargedAsAPrismThatHoldsItGrownByDel
     const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7 * n, generators::randomUnitVector(rng)));
     generators::Points points;
     for (int i = 0; i < n; ++i) {
-      // An ellipse squeezed to 1:20 (corners turning by up to ~115 degrees
-      // at its ends for n = 17).
+      // An ellipse squeezed to 1:20 (corners turning by about 150 degrees
+      // at its ends for n = 17: three tangent segments there).
       const double a = 2.0 * M_PI * i / n;
       points.push_back(q * Eigen::Vector3d(0.4 * std::cos(a), 0.02 * std::sin(a), 0.0) +
                        Eigen::Vector3d(0.1, 0.2, 0.3));

@@ -149,6 +149,40 @@ TEST(PlanningSpace, Se3HalfTurnsTurnTheWayOmplInterpolates) {
   EXPECT_GT(eigen_order_differs, n / 200);
 }
 
+// Every rotation component counts, the pose part's and a wrapped space's
+// extra ones at any depth: OMPL's distance() and interpolate() assert on each.
+TEST(PlanningSpaceWrap, RotationsWithinBoundsSeesEveryRotationComponent) {
+  auto se3 = std::make_shared<ob::SE3StateSpace>();
+  ob::RealVectorBounds b(3);
+  b.setLow(-1.0);
+  b.setHigh(1.0);
+  se3->setBounds(b);
+  auto inner = std::make_shared<ob::CompoundStateSpace>();
+  inner->addSubspace(std::make_shared<ob::SO3StateSpace>(), 1.0);
+  inner->addSubspace(std::make_shared<ob::SO2StateSpace>(), 1.0);
+  auto full = std::make_shared<ob::CompoundStateSpace>();
+  full->addSubspace(se3, 1.0);
+  full->addSubspace(inner, 1.0);
+  const PlanningSpacePtr space = PlanningSpace::wrap(full);
+  ob::ScopedState<> s(full);
+  s.random();
+  EXPECT_TRUE(space->rotationsWithinBounds(s.get()));
+  auto* extra = s->as<ob::CompoundState>()->components[1]->as<ob::CompoundState>();
+  extra->components[0]->as<ob::SO3StateSpace::StateType>()->w = 2.0;  // off unit norm
+  EXPECT_FALSE(space->rotationsWithinBounds(s.get()));
+  extra->components[0]->as<ob::SO3StateSpace::StateType>()->setIdentity();
+  extra->components[1]->as<ob::SO2StateSpace::StateType>()->value = 10.0;  // yaw out of [-pi, pi]
+  EXPECT_FALSE(space->rotationsWithinBounds(s.get()));
+  extra->components[1]->as<ob::SO2StateSpace::StateType>()->value = 0.5;
+  s->as<ob::CompoundState>()->components[0]->as<ob::SE3StateSpace::StateType>()->setX(5.0);  // position: not a rotation
+  EXPECT_TRUE(space->rotationsWithinBounds(s.get()));
+  s->as<ob::CompoundState>()->components[0]->as<ob::SE3StateSpace::StateType>()->rotation().w = 0.0;
+  s->as<ob::CompoundState>()->components[0]->as<ob::SE3StateSpace::StateType>()->rotation().x = 0.0;
+  s->as<ob::CompoundState>()->components[0]->as<ob::SE3StateSpace::StateType>()->rotation().y = 0.0;
+  s->as<ob::CompoundState>()->components[0]->as<ob::SE3StateSpace::StateType>()->rotation().z = 0.5;
+  EXPECT_FALSE(space->rotationsWithinBounds(s.get()));
+}
+
 TEST(PlanningSpace, BoundsExitFraction) {
   const PlanningSpacePtr space = PlanningSpace::r3(kBounds);
   EXPECT_NEAR(space->boundsExitFraction({0, 0, 0}, {10, 0, 0}), 0.5, 1e-12);

@@ -187,7 +187,8 @@ struct MddSceneOptions {
   /// enough that no point of the robot piece moves more than delta from the
   /// interval's middle orientation. <= 0 selects the default,
   /// kDefaultRotationToleranceRel * RigidBody::radius(). Must be at least
-  /// 1e-6 * radius (more sub-edges than that would be pointless).
+  /// 1e-6 * radius (more sub-edges than that would be pointless) and at most
+  /// 1e6 * radius (larger enlargements only waste queries).
   double rotation_tolerance = 0.0;
   /// Halvings of delta tried on a pair that fails on its interval before the
   /// edge is declared invalid (0 to 8).
@@ -286,7 +287,8 @@ struct EdgeContact {
 /// See the file comment.
 class MddScene {
  public:
-  /// Throws InvalidInputError for a null robot or world or bad options.
+  /// Throws InvalidInputError for a null robot or world, a robot without
+  /// pieces or bad options.
   MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_ptr<const scene::World> world,
            const MddSceneOptions& options = MddSceneOptions());
 

@@ -155,10 +155,12 @@ class PlanningSpace {
   void setPose(const Eigen::Isometry3d& X_WR, ompl::base::State* state) const;
   /// The motion OMPL's interpolation executes from s1 to s2 (see above).
   EdgeMotion motion(const ompl::base::State* s1, const ompl::base::State* s2) const;
-  /// Whether OMPL's interpolate() accepts the state's orientation: false for
-  /// an SE(3) quaternion whose norm is off 1 by 1e-9 or more (OMPL's
-  /// MAX_QUATERNION_NORM_ERROR; its interpolate and distance assert on it).
-  bool omplCanInterpolate(const ompl::base::State* state) const;
+  /// Whether every SO(2) and SO(3) component of the state (the pose part's and
+  /// any other, at any depth of a compound space) satisfies its bounds: a yaw
+  /// in [-pi, pi], a quaternion of norm within 1e-9 of 1. OMPL's distance()
+  /// and so validSegmentCount() assert on such components, its SO(3)
+  /// interpolate() on the quaternion's norm.
+  bool rotationsWithinBounds(const ompl::base::State* state) const;
   /// Whether OMPL's interpolation s1 -> s2 changes the orientation.
   bool rotates(const ompl::base::State* s1, const ompl::base::State* s2) const { return motion(s1, s2).rotates(); }
   /// The position bounds as OMPL checks them (the axes the state has).

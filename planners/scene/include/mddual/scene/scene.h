@@ -140,8 +140,9 @@ class World {
   void removePiece(int id);
   /// Poses piece `id` at X_WP: its geometry as it was added (or built) is
   /// moved rigidly by X_WP (the identity restores it), so repeated moves do
-  /// not accumulate round-off. Throws InvalidInputError for a non-finite pose
-  /// and SceneError when the moved hull cannot be built.
+  /// not accumulate round-off. Throws InvalidInputError for a non-finite or
+  /// non-rigid (scaled, mirrored) pose and SceneError when the moved hull
+  /// cannot be built.
   void movePiece(int id, const Eigen::Isometry3d& X_WP);
   /// Whether `id` names a current piece.
   bool hasPiece(int id) const;

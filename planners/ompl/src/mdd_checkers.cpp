@@ -110,8 +110,9 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
   // validSegmentCount asserts that every rotation is within its bounds
   // (SO2/SO3StateSpace::distance aborted on a yaw of 10 or a quaternion of
   // norm 2): an s2 with a rotation out of bounds takes the exact first
-  // contact instead (s1 satisfies the bounds, checked above).
-  const double tolerance = query == EdgeQuery::kLastValid && space_->rotationsWithinBounds(s2)
+  // contact instead (s1 satisfies the bounds, checked above; an s2 within
+  // the bounds, bounds_exit infinite, needs no look at its rotations).
+  const double tolerance = query == EdgeQuery::kLastValid && (bounds_exit == kInf || space_->rotationsWithinBounds(s2))
                                ? 1.0 / std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2))
                                : 0.0;
   out = scene_->checkEdge(motion, query, tolerance);

@@ -283,6 +283,28 @@ TEST_P(MeshConfigs, LoadsWithValidMeshesStartGoalAndWitnessPath) {
   }
 }
 
+// twistycool's slot (1.5 x 0.8125 m) must make the bar screw: unturned, the
+// bar's section in the wall turns with its twist (pi/4 per metre along it),
+// and with an end in the wall (position +-0.875 m: sections turned by 0.59
+// to 0.79 rad) it is 0.76 to 0.88 m tall, more than the slot; turned by the
+// screw angle (pi/4 * position) its sections in the wall are within 0.1 rad
+// of flat (at most 0.35 m tall). Near the middle (position 0.5 m,
+// at most 0.69 m tall) the slot lets it through unturned, which the old
+// 0.6875 m slot did not (scripts/make_configs.py, twistycool()).
+TEST(TwistycoolSlot, TheBarMustScrewThroughAndTheSlotAllowsIt) {
+  const ProblemScene s = loadProblemScene(readProblemConfig(kConfigs / "twistycool" / "twistycool.cfg"));
+  const double screw = M_PI / 4;  // rad per metre of the bar's position (twist / length)
+  const auto pose = [](double x, double beta) {
+    return toIsometry(PoseSpec{Eigen::Vector3d(x, 0, 0), Eigen::Vector3d::UnitX(), beta}, SpaceKind::kSE3);
+  };
+  for (const double x : {-0.875, 0.875}) {
+    SCOPED_TRACE("position " + std::to_string(x));
+    EXPECT_TRUE(collides(s, pose(x, 0.0))) << "unturned, the bar's end fits the slot: the twist is not needed";
+    EXPECT_FALSE(collides(s, pose(x, screw * x))) << "screwed, the bar does not pass";
+  }
+  EXPECT_FALSE(collides(s, pose(0.5, 0.0))) << "the slot is narrower than designed (0.8125 m)";
+}
+
 INSTANTIATE_TEST_SUITE_P(Configs, MeshConfigs, ::testing::ValuesIn(meshConfigs()),
                          [](const ::testing::TestParamInfo<MeshConfig>& p) { return p.param.name; });
 

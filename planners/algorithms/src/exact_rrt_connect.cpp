@@ -18,7 +18,7 @@ ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planne
   specs_.directed = true;
   Planner::declareParam<double>("range", this, &ExactRRTConnect::setRange, &ExactRRTConnect::getRange, "0.:1.:10000.");
   Planner::declareParam<double>("min_progress", this, &ExactRRTConnect::setMinProgress,
-                                &ExactRRTConnect::getMinProgress, "0.:1e-6:0.1");
+                                &ExactRRTConnect::getMinProgress, "0.:0.1:100.");
   Planner::declareParam<bool>("rotate_first", this, &ExactRRTConnect::setRotateFirst, &ExactRRTConnect::getRotateFirst,
                               "0,1");
 }
@@ -104,8 +104,12 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
   if (si_->checkMotion(from->state, to, last_valid)) {
     added = addMotion(tree, from, to);
     *reached = true;
-  } else if (last_valid.second > 0.0 && si_->distance(from->state, last) > min_progress_ * si_->getMaximumExtent()) {
-    added = addMotion(tree, from, last);
+  } else if (last_valid.second > 0.0) {
+    // Kept only when it is progress: at least min_progress steps (header).
+    const double gained = si_->distance(from->state, last);
+    if (gained > 0.0 && gained >= min_progress_ * si_->getStateSpace()->getLongestValidSegmentLength()) {
+      added = addMotion(tree, from, last);
+    }
   }
   si_->freeState(last);
   return added;

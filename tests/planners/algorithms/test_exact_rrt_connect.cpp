@@ -4,6 +4,7 @@
 // extending to the first contact).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <ompl/base/PlannerData.h>
@@ -209,6 +210,61 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
   }
   EXPECT_GT(rotations, 0);
   EXPECT_GT(translations, 0);
+}
+
+/// Every motion is blocked, and lastValid keeps `gain` of it (at most half):
+/// a validator whose bound lies short of the contact, as MDD-DUAL's may by up
+/// to one validity-checking step.
+class ShortGainValidator : public ob::MotionValidator {
+ public:
+  ShortGainValidator(const ob::SpaceInformationPtr& si, double gain) : ob::MotionValidator(si), gain_(gain) {}
+  bool checkMotion(const ob::State*, const ob::State*) const override { return false; }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
+    ++checks;
+    const double d = si_->distance(s1, s2);
+    lastValid.second = d > 0.0 ? std::min(0.5, gain_ / d) : 0.0;
+    if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
+    return false;
+  }
+  mutable int checks = 0;
+
+ private:
+  double gain_;
+};
+
+/// States in the trees after `iterations` evaluations of the termination
+/// condition, with every motion blocked after `gain_steps` validity-checking
+/// steps and min_progress set to `min_progress` steps.
+unsigned statesWithShortGains(double gain_steps, double min_progress, int* checks) {
+  ompl::RNG::setSeed(13);
+  og::SimpleSetup ss = makeSetup();  // resolution 0.001 of the extent (10 sqrt 2)
+  const ob::SpaceInformationPtr& si = ss.getSpaceInformation();
+  auto planner = std::make_shared<ExactRRTConnect>(si);
+  EXPECT_DOUBLE_EQ(planner->getMinProgress(), 1.0);  // the default: one step
+  planner->setMinProgress(min_progress);
+  ss.setPlanner(planner);
+  ss.setup();  // the space's step is known after its set-up
+  const double step = si->getStateSpace()->getLongestValidSegmentLength();
+  EXPECT_NEAR(step, 0.001 * 10.0 * std::sqrt(2.0), 1e-12);
+  auto validator = std::make_shared<ShortGainValidator>(si, gain_steps * step);
+  si->setMotionValidator(validator);
+  int evaluations = 0;
+  ss.solve(ob::PlannerTerminationCondition([&evaluations] { return ++evaluations > 400; }));
+  ob::PlannerData data(si);
+  planner->getPlannerData(data);
+  *checks = validator->checks;
+  return data.numVertices();
+}
+
+TEST(ExactRRTConnect, BlockedExtensionsShorterThanMinProgressStepsAddNothing) {
+  // A blocked edge kept up to lastValid is a new state only when it gains at
+  // least min_progress steps: extending again toward the same target from a
+  // kept state follows the same blocked path (the creep this rule stops).
+  int checks_below = 0, checks_above = 0;
+  EXPECT_EQ(statesWithShortGains(0.4, 1.0, &checks_below), 2u);  // start and goal only
+  EXPECT_GT(checks_below, 10);                                   // extensions were tried
+  EXPECT_GT(statesWithShortGains(0.4, 0.25, &checks_above), 10u);
+  EXPECT_GT(statesWithShortGains(0.4, 0.0, &checks_above), 10u);  // any gain, as before
 }
 
 TEST(ExactRRTConnect, RotateFirstOffByDefaultKeepsStraightEdges) {

@@ -303,6 +303,10 @@ TEST(TwistycoolSlot, TheBarMustScrewThroughAndTheSlotAllowsIt) {
     EXPECT_FALSE(collides(s, pose(x, screw * x))) << "screwed, the bar does not pass";
   }
   EXPECT_FALSE(collides(s, pose(0.5, 0.0))) << "the slot is narrower than designed (0.8125 m)";
+  // The height itself: unturned at 0.7 m the bar is 0.798 m tall in the wall
+  // (fits), at 0.75 m 0.823 m (does not): the slot is between the two.
+  EXPECT_FALSE(collides(s, pose(0.7, 0.0))) << "the slot is lower than 0.798 m";
+  EXPECT_TRUE(collides(s, pose(0.75, 0.0))) << "the slot is higher than 0.823 m";
 }
 
 INSTANTIATE_TEST_SUITE_P(Configs, MeshConfigs, ::testing::ValuesIn(meshConfigs()),

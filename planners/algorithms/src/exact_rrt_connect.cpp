@@ -8,6 +8,11 @@
 #include <ompl/tools/config/SelfConfig.h>
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "mddual/error.h"
 
 namespace mddual::planning {
 
@@ -21,6 +26,31 @@ ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planne
                                 &ExactRRTConnect::getMinProgress, "0.:0.1:100.");
   Planner::declareParam<bool>("rotate_first", this, &ExactRRTConnect::setRotateFirst, &ExactRRTConnect::getRotateFirst,
                               "0,1");
+}
+
+namespace {
+
+/// The value as OMPL's ParamSet would print it (shortest form, "nan", "inf").
+std::string text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+void ExactRRTConnect::setRange(double range) {
+  if (!(range >= 0.0)) {
+    throw InvalidInputError("ExactRRTConnect: range must be >= 0 (0: unlimited), got " + text(range));
+  }
+  range_ = range;
+}
+
+void ExactRRTConnect::setMinProgress(double steps) {
+  if (!(steps >= 0.0) || !std::isfinite(steps)) {
+    throw InvalidInputError("ExactRRTConnect: min_progress must be a finite number of steps >= 0, got " + text(steps));
+  }
+  min_progress_ = steps;
 }
 
 ExactRRTConnect::~ExactRRTConnect() {
@@ -105,9 +135,12 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
     added = addMotion(tree, from, to);
     *reached = true;
   } else if (last_valid.second > 0.0) {
-    // Kept only when it is progress: at least min_progress steps (header).
+    // Kept only when it is progress: at least min_progress of this edge's
+    // validity-checking steps (the header says why).
+    const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(from->state, to));
+    const double step = si_->distance(from->state, to) / steps;
     const double gained = si_->distance(from->state, last);
-    if (gained > 0.0 && gained >= min_progress_ * si_->getStateSpace()->getLongestValidSegmentLength()) {
+    if (gained > 0.0 && gained >= min_progress_ * step) {
       added = addMotion(tree, from, last);
     }
   }

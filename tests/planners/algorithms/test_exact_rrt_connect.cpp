@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -13,6 +14,7 @@
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "mddual/error.h"
 #include "mddual/planning/exact_rrt_connect.h"
 
 namespace mddual::planning {
@@ -212,41 +214,42 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
   EXPECT_GT(translations, 0);
 }
 
-/// Every motion is blocked, and lastValid keeps `gain` of it (at most half):
-/// a validator whose bound lies short of the contact, as MDD-DUAL's may by up
-/// to one validity-checking step.
+/// Every motion is blocked, and lastValid keeps `gain_steps` validity-checking
+/// steps of it (the edge's length over validSegmentCount; at most half of
+/// it): a validator whose bound lies short of the contact, as MDD-DUAL's may
+/// by up to one step.
 class ShortGainValidator : public ob::MotionValidator {
  public:
-  ShortGainValidator(const ob::SpaceInformationPtr& si, double gain) : ob::MotionValidator(si), gain_(gain) {}
+  ShortGainValidator(const ob::SpaceInformationPtr& si, double gain_steps)
+      : ob::MotionValidator(si), gain_steps_(gain_steps) {}
   bool checkMotion(const ob::State*, const ob::State*) const override { return false; }
   bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
     ++checks;
-    const double d = si_->distance(s1, s2);
-    lastValid.second = d > 0.0 ? std::min(0.5, gain_ / d) : 0.0;
+    const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2));
+    lastValid.second = std::min(0.5, gain_steps_ / steps);
     if (lastValid.first != nullptr) si_->getStateSpace()->interpolate(s1, s2, lastValid.second, lastValid.first);
     return false;
   }
   mutable int checks = 0;
 
  private:
-  double gain_;
+  double gain_steps_;
 };
 
-/// States in the trees after `iterations` evaluations of the termination
-/// condition, with every motion blocked after `gain_steps` validity-checking
-/// steps and min_progress set to `min_progress` steps.
-unsigned statesWithShortGains(double gain_steps, double min_progress, int* checks) {
+/// States in the trees of `ss` after 400 evaluations of the termination
+/// condition, every motion blocked after `gain_steps` steps, min_progress
+/// set to `min_progress` steps; *checks: the motion checks made.
+unsigned statesWithShortGains(og::SimpleSetup ss, double gain_steps, double min_progress, int* checks,
+                              bool rotate_first = false) {
   ompl::RNG::setSeed(13);
-  og::SimpleSetup ss = makeSetup();  // resolution 0.001 of the extent (10 sqrt 2)
   const ob::SpaceInformationPtr& si = ss.getSpaceInformation();
   auto planner = std::make_shared<ExactRRTConnect>(si);
   EXPECT_DOUBLE_EQ(planner->getMinProgress(), 1.0);  // the default: one step
   planner->setMinProgress(min_progress);
+  planner->setRotateFirst(rotate_first);
   ss.setPlanner(planner);
-  ss.setup();  // the space's step is known after its set-up
-  const double step = si->getStateSpace()->getLongestValidSegmentLength();
-  EXPECT_NEAR(step, 0.001 * 10.0 * std::sqrt(2.0), 1e-12);
-  auto validator = std::make_shared<ShortGainValidator>(si, gain_steps * step);
+  ss.setup();
+  auto validator = std::make_shared<ShortGainValidator>(si, gain_steps);
   si->setMotionValidator(validator);
   int evaluations = 0;
   ss.solve(ob::PlannerTerminationCondition([&evaluations] { return ++evaluations > 400; }));
@@ -260,11 +263,55 @@ TEST(ExactRRTConnect, BlockedExtensionsShorterThanMinProgressStepsAddNothing) {
   // A blocked edge kept up to lastValid is a new state only when it gains at
   // least min_progress steps: extending again toward the same target from a
   // kept state follows the same blocked path (the creep this rule stops).
-  int checks_below = 0, checks_above = 0;
-  EXPECT_EQ(statesWithShortGains(0.4, 1.0, &checks_below), 2u);  // start and goal only
-  EXPECT_GT(checks_below, 10);                                   // extensions were tried
-  EXPECT_GT(statesWithShortGains(0.4, 0.25, &checks_above), 10u);
-  EXPECT_GT(statesWithShortGains(0.4, 0.0, &checks_above), 10u);  // any gain, as before
+  int checks = 0;
+  EXPECT_EQ(statesWithShortGains(makeSetup(), 0.4, 1.0, &checks), 2u);  // start and goal only
+  EXPECT_GT(checks, 10);                                                // extensions were tried
+  EXPECT_GT(statesWithShortGains(makeSetup(), 0.4, 0.25, &checks), 10u);
+  EXPECT_GT(statesWithShortGains(makeSetup(), 0.4, 0.0, &checks), 10u);  // any gain, as before
+}
+
+TEST(ExactRRTConnect, MinProgressCountsTheEdgesOwnSteps) {
+  // SE(2) in a 100 m square, rotating in place first: a rotation's steps
+  // (OMPL's validSegmentCount, from the yaw's extent) are 0.016 long, while
+  // the space's longest valid segment (resolution x the sum of the extents)
+  // is 1.43. Every motion is blocked, so every extension is one rotation in
+  // place, kept up to lastValid or not: a gain of 1.5 of the edge's steps is
+  // progress, 0.6 is not.
+  const auto square = [] {
+    og::SimpleSetup ss = makeRodSetup(80.0, 80.0, 1.0);
+    ob::RealVectorBounds bounds(2);
+    bounds.setLow(0.0);
+    bounds.setHigh(100.0);
+    ss.getStateSpace()->as<ob::SE2StateSpace>()->setBounds(bounds);
+    ss.setStateValidityChecker([](const ob::State*) { return true; });
+    ss.getSpaceInformation()->setStateValidityCheckingResolution(0.01);
+    return ss;
+  };
+  int checks = 0;
+  EXPECT_EQ(statesWithShortGains(square(), 0.6, 1.0, &checks, true), 2u);
+  EXPECT_GT(checks, 10);
+  EXPECT_GT(statesWithShortGains(square(), 1.5, 1.0, &checks, true), 10u);
+}
+
+TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
+  og::SimpleSetup ss = makeSetup();
+  ExactRRTConnect planner(ss.getSpaceInformation());
+  for (const double bad : {-1.0, std::nan("")}) {
+    EXPECT_THROW(planner.setRange(bad), InvalidInputError) << bad;
+    EXPECT_THROW(planner.setMinProgress(bad), InvalidInputError) << bad;
+  }
+  EXPECT_THROW(planner.setMinProgress(HUGE_VAL), InvalidInputError);
+  try {
+    planner.setMinProgress(-0.5);
+    ADD_FAILURE() << "-0.5 accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_EQ(std::string(e.what()), "ExactRRTConnect: min_progress must be a finite number of steps >= 0, got -0.5");
+  }
+  EXPECT_DOUBLE_EQ(planner.getRange(), 0.0);  // unchanged by the refused values
+  EXPECT_DOUBLE_EQ(planner.getMinProgress(), 1.0);
+  planner.setRange(HUGE_VAL);  // an infinite range is no limit, as 0
+  planner.setMinProgress(0.0);
+  EXPECT_EQ(planner.getMinProgress(), 0.0);
 }
 
 TEST(ExactRRTConnect, RotateFirstOffByDefaultKeepsStraightEdges) {

@@ -28,25 +28,31 @@
 // extension there. Other spaces extend along the straight edge as before.
 //
 // Parameters (ompl::base::ParamSet): "range" (0 = unlimited, the default:
-// extensions are only limited by contact), "min_progress" (in steps of the
-// space's validity-checking resolution, getLongestValidSegmentLength(); 1 by
-// default: a blocked extension shorter than that adds nothing),
-// "rotate_first" (1: the two-edge extension where the space allows it; 0, the
-// default: straight edges everywhere). Rotating first was the default for a
-// while; it made the planner about 10x slower on the SE(2) maze and the SE(3)
-// cubicles (README, "The benchmark"), so it is off.
+// extensions are only limited by contact), "min_progress" (in validity-
+// checking steps of the edge: its length over the space's validSegmentCount,
+// the step of OMPL's discrete check of that edge; 1 by default: a blocked
+// extension gaining less than that adds nothing), "rotate_first" (1: the
+// two-edge extension where the space allows it; 0, the default: straight
+// edges everywhere). Rotating first was the default for a while; it made the
+// planner about 10x slower on the SE(2) maze and the SE(3) cubicles (README,
+// "The benchmark"), so it is off.
 //
-// Why one step for min_progress: a blocked edge's lastValid lies before its
-// first contact, by at most one validity-checking step with MDD-DUAL's
-// validator (OMPL's discrete validator: by less). Extending again toward the
-// same target from the kept state follows the same path (OMPL's interpolation
-// of a part of an edge is that part of the edge), so it is blocked by the
-// same contact and gains less than a step, and CONNECT repeated that
-// creeping, a motion check each time, until a gain below the former
-// threshold (1e-6 of the maximum extent). Measured (README, the benchmark's
-// mdd_rrtconnect paragraph; five mesh configs, two seeds, 10 runs each): one
-// step instead made the median 1.06x to 4.1x faster in 9 of the 10 groups
-// (twistycool with one seed 6% slower).
+// Why one step for min_progress: MDD-DUAL's validator returns as lastValid a
+// state before the first contact by at most one step of the edge. Extending
+// again toward the same target from that state follows the same path (OMPL's
+// interpolation of a part of an edge is that part of the edge, in R^n, SE(2)
+// and SE(3)), so it meets the same contact and gains less than a step; with
+// a threshold of 1e-6 of the maximum extent, as before, CONNECT repeated that
+// creep, one lastValid check each time. (OMPL's discrete validator does not
+// creep: its lastValid is one step before its first colliding sample, which
+// the next extension samples first.) Measured (README, the mdd_rrtconnect
+// paragraph of the mesh results; five mesh configs, two seeds, 10 runs each):
+// the median fell by 1.3x to 4.5x in all 10 (config, seed) groups. The
+// space's longest valid segment (resolution x maximum extent) as the step,
+// tried first, is the edge's step for a pure translation but up to ten of
+// them for an edge that mostly turns (the rotation's extent counts in the
+// sum): it discards real progress, and it did less well (1.06x to 4.1x in 9
+// of the 10 groups, twistycool with one seed 6% slower).
 #pragma once
 
 #include <memory>
@@ -69,9 +75,11 @@ class ExactRRTConnect : public ompl::base::Planner {
   void setup() override;
   void getPlannerData(ompl::base::PlannerData& data) const override;
 
-  void setRange(double range) { range_ = range; }
+  /// Throws InvalidInputError for a negative or NaN range (0: unlimited).
+  void setRange(double range);
   double getRange() const { return range_; }
-  void setMinProgress(double steps) { min_progress_ = steps; }
+  /// Throws InvalidInputError for a negative, infinite or NaN value.
+  void setMinProgress(double steps);
   double getMinProgress() const { return min_progress_; }
   void setRotateFirst(bool rotate_first) { rotate_first_ = rotate_first; }
   bool getRotateFirst() const { return rotate_first_; }

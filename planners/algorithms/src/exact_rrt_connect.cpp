@@ -30,7 +30,11 @@ ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planne
 
 namespace {
 
-/// The value as OMPL's ParamSet would print it (shortest form, "nan", "inf").
+/// Relative slack of the min_progress comparison (in steps): a fraction j /
+/// steps times steps is j within a few ulps.
+constexpr double kStepRoundoff = 1e-9;
+
+/// The value in ostream's default format (6 significant digits, "nan", "inf").
 std::string text(double value) {
   std::ostringstream out;
   out << value;
@@ -136,13 +140,12 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
     *reached = true;
   } else if (last_valid.second > 0.0) {
     // Kept only when it is progress: at least min_progress of this edge's
-    // validity-checking steps (the header says why).
+    // validity-checking steps (the header says why). Counted in steps from
+    // the fraction: OMPL's discrete validator keeps whole steps (j / steps),
+    // and a gain of exactly min_progress steps must not be lost to the
+    // round-off of a distance comparison (kStepRoundoff).
     const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(from->state, to));
-    const double step = si_->distance(from->state, to) / steps;
-    const double gained = si_->distance(from->state, last);
-    if (gained > 0.0 && gained >= min_progress_ * step) {
-      added = addMotion(tree, from, last);
-    }
+    if (last_valid.second * steps >= min_progress_ * (1.0 - kStepRoundoff)) added = addMotion(tree, from, last);
   }
   si_->freeState(last);
   return added;

@@ -268,6 +268,11 @@ TEST(ExactRRTConnect, BlockedExtensionsShorterThanMinProgressStepsAddNothing) {
   EXPECT_GT(checks, 10);                                                // extensions were tried
   EXPECT_GT(statesWithShortGains(makeSetup(), 0.4, 0.25, &checks), 10u);
   EXPECT_GT(statesWithShortGains(makeSetup(), 0.4, 0.0, &checks), 10u);  // any gain, as before
+  // Exactly one step (what OMPL's discrete validator keeps when its second
+  // sample collides) is progress: every blocked check adds its state.
+  const unsigned states = statesWithShortGains(makeSetup(), 1.0, 1.0, &checks);
+  EXPECT_GT(checks, 10);
+  EXPECT_EQ(states, 2u + static_cast<unsigned>(checks));
 }
 
 TEST(ExactRRTConnect, MinProgressCountsTheEdgesOwnSteps) {

@@ -17,6 +17,8 @@
 #include <fcl/narrowphase/continuous_collision.h>
 #include <fcl/narrowphase/distance.h>
 
+#include "mddual/fcl_interop.h"
+
 static_assert(sizeof(btScalar) == sizeof(double),
               "Bullet must be the double-precision build (BT_USE_DOUBLE_PRECISION)");
 
@@ -72,24 +74,11 @@ class BulletCast final : public ToiPeer {
   double length_;
 };
 
-std::shared_ptr<fcl::Convex<double>> fclConvex(const ConvexPolytope& p) {
-  auto vertices = std::make_shared<std::vector<fcl::Vector3<double>>>(p.vertices().begin(), p.vertices().end());
-  auto faces = std::make_shared<std::vector<int>>();
-  for (int f = 0; f < p.numFaces(); ++f) {
-    const IndexRange loop = p.faceVertices(f);
-    faces->push_back(loop.size());
-    faces->insert(faces->end(), loop.begin(), loop.end());
-  }
-  auto convex = std::make_shared<fcl::Convex<double>>(vertices, p.numFaces(), faces, /*throw_if_invalid=*/true);
-  convex->computeLocalAABB();
-  return convex;
-}
-
 class FclCcd final : public ToiPeer {
  public:
   FclCcd(std::string name, const ConvexPolytope& a, const ConvexPolytope& b, double cast_length,
          fcl::CCDSolverType solver, fcl::GJKSolverType gjk)
-      : name_(std::move(name)), a_(fclConvex(a)), b_(fclConvex(b)), length_(cast_length) {
+      : name_(std::move(name)), a_(toFclConvex(a)), b_(toFclConvex(b)), length_(cast_length) {
     request_.ccd_motion_type = fcl::CCDM_TRANS;
     request_.ccd_solver_type = solver;
     request_.gjk_solver_type = gjk;
@@ -120,7 +109,7 @@ class FclPenetration final : public PdPeer {
  public:
   enum class Mode { kCollide, kSignedDistance };
   FclPenetration(std::string name, const ConvexPolytope& a, const ConvexPolytope& b, Mode mode, fcl::GJKSolverType gjk)
-      : name_(std::move(name)), a_(fclConvex(a)), b_(fclConvex(b)), mode_(mode) {
+      : name_(std::move(name)), a_(toFclConvex(a)), b_(toFclConvex(b)), mode_(mode) {
     collide_.num_max_contacts = 1;
     collide_.enable_contact = true;
     collide_.gjk_solver_type = gjk;

@@ -630,7 +630,7 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
   // A NaN pose fails every overlap test: it would report no pair at all.
   // Finiteness only (see the header): the full pose check was 28% of the
   // thin wall's state checks (callgrind), whose poses mostly reach no pair.
-  detail::checkFinitePose(X_AB, "X_AB", "forEachOverlappingPair");
+  requireFinitePose(X_AB, "pose X_AB", "forEachOverlappingPair");
   if (a.empty() || b.empty()) return true;
   ScratchLease s;
   PosedNodes posed(b, X_AB, margin_b, *s);
@@ -684,7 +684,7 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
   if (!(max_distance >= 0.0)) throw InvalidInputError("castFirst: max_distance is negative or NaN");
   // A NaN pose fails every overlap test: the cast would report no contact.
   // Finiteness only, as in forEachOverlappingPair (bvh.h).
-  detail::checkFinitePose(X_AB, "X_AB", "castFirst");
+  requireFinitePose(X_AB, "pose X_AB", "castFirst");
   if (!(options.margin_b >= 0.0)) throw InvalidInputError("castFirst: margin_b is negative or NaN");
   if (!(options.stop_within >= 0.0)) throw InvalidInputError("castFirst: stop_within is negative or NaN");
   CastHit hit;

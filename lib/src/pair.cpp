@@ -27,7 +27,7 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
         << " in magnitude (out of the supported range)";
     throw InvalidInputError(msg.str());
   }
-  if (!finite) checkFinitePose(X, name, query);  // throws, saying which part
+  if (!finite) requireFinitePose(X, std::string("pose ") + name, query);  // throws, saying which part
   const bool rotation = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0;
   if (!rotation) {
     throw InvalidInputError(std::string(query) + ": pose " + name +
@@ -37,12 +37,6 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
 }
 
 }  // namespace
-
-void checkFinitePose(const Eigen::Isometry3d& X, const char* name, const char* query) {
-  if (X.matrix().topRows<3>().allFinite()) return;
-  throw InvalidInputError(std::string(query) + ": pose " + name + " has a non-finite " +
-                          (X.linear().allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");
-}
 
 PairGeometry::PairGeometry(const ConvexPolytope* a, const Eigen::Isometry3d& X_WA, const ConvexPolytope* b,
                            const Eigen::Isometry3d& X_WB, const char* query)
@@ -147,6 +141,12 @@ std::string toJsonLine(const DirectionalInput& input, const std::string& id) {
   const Eigen::Vector3d& s = input.s_W;
   out << R"(, "direction": [)" << s.x() << ", " << s.y() << ", " << s.z() << "]}";
   return out.str();
+}
+
+void requireFinitePose(const Eigen::Isometry3d& X, const std::string& what, const char* query) {
+  if (X.matrix().topRows<3>().allFinite()) return;
+  throw InvalidInputError(std::string(query) + ": " + what + " has a non-finite " +
+                          (X.linear().allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");
 }
 
 }  // namespace mddual

@@ -89,12 +89,6 @@ class PairGeometry {
 /// the planning layer's directed clearance).
 void checkMaxDistance(double max_distance, const char* query);
 
-/// Throws InvalidInputError, naming `query`, the pose's `name` and whether
-/// its translation or its rotation is at fault, when X has a NaN or infinite
-/// entry (12 comparisons: the traversals' check; the pair queries also check
-/// rigidity).
-void checkFinitePose(const Eigen::Isometry3d& X, const char* name, const char* query);
-
 /// Checks a direction (finite, nonzero) and returns it normalised; `query`
 /// names the caller in the error.
 Eigen::Vector3d unitDirection(const Eigen::Vector3d& s, const char* query);

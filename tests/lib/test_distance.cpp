@@ -24,6 +24,8 @@
 #ifdef MDDUAL_TEST_WITH_FCL
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/narrowphase/distance.h>
+
+#include "mddual/fcl_interop.h"
 #endif
 
 namespace mddual::testing {
@@ -84,26 +86,13 @@ double bruteSigned(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const
 }
 
 #ifdef MDDUAL_TEST_WITH_FCL
-std::shared_ptr<fcl::Convex<double>> fclConvex(const ConvexPolytope& p) {
-  auto vertices = std::make_shared<std::vector<fcl::Vector3<double>>>(p.vertices().begin(), p.vertices().end());
-  auto faces = std::make_shared<std::vector<int>>();
-  for (int f = 0; f < p.numFaces(); ++f) {
-    const IndexRange loop = p.faceVertices(f);
-    faces->push_back(loop.size());
-    faces->insert(faces->end(), loop.begin(), loop.end());
-  }
-  auto convex = std::make_shared<fcl::Convex<double>>(vertices, p.numFaces(), faces, /*throw_if_invalid=*/false);
-  convex->computeLocalAABB();
-  return convex;
-}
-
 /// FCL's distance (libccd GJK, tight tolerance; FCL's own GJK stops early on
 /// bodies of a few cm: 7e-5 off on one blob pair); negative when FCL
 /// reports a collision (its value is then not a depth).
 double fclDistance(const ConvexPolytope& a, const Eigen::Isometry3d& X_WA, const ConvexPolytope& b,
                    const Eigen::Isometry3d& X_WB) {
-  auto ca = fclConvex(a);
-  auto cb = fclConvex(b);
+  auto ca = toFclConvex(a);
+  auto cb = toFclConvex(b);
   fcl::DistanceRequest<double> request;
   request.enable_nearest_points = true;
   request.gjk_solver_type = fcl::GST_LIBCCD;

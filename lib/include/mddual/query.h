@@ -234,4 +234,12 @@ IntersectResult intersect(const IntersectInput& input, WarmStart* warm = nullptr
 /// a failing query can be pasted into a test or piped into the CLI.
 std::string toJsonLine(const DirectionalInput& input, const std::string& id = "repro");
 
+/// Throws InvalidInputError "<query>: <what> has a non-finite translation (or
+/// rotation) entry (NaN or infinity)" when X has a NaN or infinite entry in
+/// its top three rows; otherwise does nothing (12 comparisons, no rigidity
+/// check: the pair queries check that). For callers that test a pose before
+/// a traversal, where a NaN pose would fail every volume test and read as
+/// "free": the core's hierarchy queries and the planning layer's scenes.
+void requireFinitePose(const Eigen::Isometry3d& X, const std::string& what, const char* query);
+
 }  // namespace mddual

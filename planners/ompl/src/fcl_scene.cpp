@@ -12,6 +12,7 @@
 
 #include "constants.h"
 #include "mddual/error.h"
+#include "mddual/fcl_interop.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/per_thread.h"
 
@@ -62,7 +63,7 @@ std::shared_ptr<Geometry> triangleSoup(const std::vector<scene::Piece>& pieces) 
 std::vector<std::shared_ptr<Geometry>> geometries(const std::vector<scene::Piece>& pieces) {
   std::vector<std::shared_ptr<Geometry>> out;
   for (const scene::Piece& piece : pieces) {
-    if (piece.kind == scene::PieceKind::kConvex) out.push_back(fclConvex(piece.polytope));
+    if (piece.kind == scene::PieceKind::kConvex) out.push_back(toFclConvex(piece.polytope));
   }
   if (auto soup = triangleSoup(pieces)) out.push_back(soup);
   return out;
@@ -170,21 +171,6 @@ bool candidateCallback(Object* o1, Object* o2, void* cdata) {
 }
 
 }  // namespace
-
-std::shared_ptr<fcl::Convex<double>> fclConvex(const ConvexPolytope& p) {
-  auto vertices = std::make_shared<std::vector<fcl::Vector3<double>>>(p.vertices().begin(), p.vertices().end());
-  auto faces = std::make_shared<std::vector<int>>();
-  for (int f = 0; f < p.numFaces(); ++f) {
-    const IndexRange loop = p.faceVertices(f);
-    faces->push_back(loop.size());
-    faces->insert(faces->end(), loop.begin(), loop.end());
-  }
-  // A flat polygon (two opposite faces) is not a closed mesh FCL validates;
-  // its support function still works.
-  auto convex = std::make_shared<fcl::Convex<double>>(vertices, p.numFaces(), faces, !p.isFlat());
-  convex->computeLocalAABB();
-  return convex;
-}
 
 const char* toString(FclCcdSolver solver) {
   return solver == FclCcdSolver::kNaive ? "naive" : "conservative_advancement";

@@ -101,16 +101,6 @@ std::vector<Eigen::Vector3d> grownPolygon(const ConvexPolytope& flat, double r) 
   return corners;
 }
 
-/// A NaN pose fails every volume test and so reached no pair: "free" (also
-/// in an empty world). Finiteness only (12 comparisons); the pair queries
-/// check rigidity.
-void checkFinitePose(const Eigen::Isometry3d& X_WR, const char* query) {
-  if (!X_WR.matrix().topRows<3>().allFinite()) {
-    throw InvalidInputError(std::string(query) + ": the robot pose X_WR has a non-finite " +
-                            (X_WR.linear().allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");
-  }
-}
-
 /// A hand-built EdgeMotion that PlanningSpace::motion would never make: a
 /// negative angle read as no rotation at all (the edge's collisions were
 /// missed), a scaled axis or start rotation failed deep in the core.
@@ -353,7 +343,8 @@ bool MddScene::collides(const Eigen::Isometry3d& X_WR, int* pair_queries, PieceC
 }
 
 bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const {
-  checkFinitePose(X_WR, "MddScene::collides");
+  // A NaN pose fails every volume test and would reach no pair: "free".
+  requireFinitePose(X_WR, "the robot pose X_WR", "MddScene::collides");
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
   int queries = 0;
@@ -412,7 +403,7 @@ SweepResult MddScene::sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d
 
 SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
                                bool first_contact, double stop_within) const {
-  checkFinitePose(X_WR, "MddScene::sweep");
+  requireFinitePose(X_WR, "the robot pose X_WR", "MddScene::sweep");
   SweepResult result;
   // Divided by its largest coordinate first: |v| under- or overflows for
   // directions such as [1e-200, 0, 0] (the core's rule, pair.cpp).

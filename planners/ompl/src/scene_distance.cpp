@@ -34,9 +34,7 @@ Eigen::AlignedBox3d expanded(const Eigen::AlignedBox3d& box, double r) {
 SceneDistance sceneDistance(const MddScene& scene, const Eigen::Isometry3d& X_WR) {
   // A NaN pose misses every box query: it would be "infinitely far" from
   // everything (the core checks rigidity on the first pair).
-  if (!X_WR.matrix().topRows<3>().allFinite()) {
-    throw InvalidInputError("sceneDistance: the robot pose X_WR has a non-finite entry (NaN or infinity)");
-  }
+  requireFinitePose(X_WR, "the robot pose X_WR", "sceneDistance");
   SceneDistance out;
   const std::vector<scene::Piece>& robot = scene.robot().pieces();
   const std::vector<scene::Piece>& world = scene.world().pieces();

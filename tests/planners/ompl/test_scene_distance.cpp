@@ -26,6 +26,7 @@
 #include <limits>
 #include <map>
 
+#include "mddual/fcl_interop.h"
 #include "mddual/penetration.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/scene_distance.h"
@@ -43,7 +44,7 @@ constexpr double kAccuracyRel = 1e-9;  ///< of the scene's size (issue 10)
 class FclPieces {
  public:
   explicit FclPieces(const MddScene& scene) : scene_(scene) {
-    for (const auto& p : scene.robot().pieces()) robot_.push_back(fclConvex(p.polytope));
+    for (const auto& p : scene.robot().pieces()) robot_.push_back(toFclConvex(p.polytope));
   }
   /// Smallest FCL distance over the pairs whose sphere gap is below `limit`
   /// (+infinity if none); `pairs` counts the FCL calls.
@@ -74,7 +75,7 @@ class FclPieces {
  private:
   std::shared_ptr<fcl::Convex<double>> worldModel(std::size_t j) {
     auto it = world_.find(j);
-    if (it == world_.end()) it = world_.emplace(j, fclConvex(scene_.world().pieces()[j].polytope)).first;
+    if (it == world_.end()) it = world_.emplace(j, toFclConvex(scene_.world().pieces()[j].polytope)).first;
     return it->second;
   }
   const MddScene& scene_;

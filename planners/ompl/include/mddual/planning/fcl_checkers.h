@@ -50,18 +50,7 @@
 #include "mddual/planning/state_space.h"
 #include "mddual/scene/scene.h"
 
-namespace fcl {
-template <typename S>
-class Convex;
-}  // namespace fcl
-
 namespace mddual::planning {
-
-/// p as an fcl::Convex<double> in p's body frame (vertices, and faces from
-/// faceVertices(), counter-clockwise seen from outside; a flat polygon is not
-/// validated as a closed mesh, its support function still works): the model
-/// the FCL baselines use for a kConvex piece, for tests that compare with FCL.
-std::shared_ptr<fcl::Convex<double>> fclConvex(const ConvexPolytope& p);
 
 OMPL_CLASS_FORWARD(FclScene);
 OMPL_CLASS_FORWARD(FclStateValidityChecker);

@@ -275,6 +275,32 @@ TEST(Query, InvalidInputsThrowOurErrors) {
   EXPECT_NE(message([&] { intersect(IntersectInput{&c, at(0, 0, 0), &c, poisoned}); }).find("X_WB"), std::string::npos);
 }
 
+// requireFinitePose (public, for callers that test a pose before a
+// traversal): says which part is at fault, ignores the last row, and does
+// not check rigidity (the pair queries do).
+TEST(Query, RequireFinitePoseNamesTheQueryAndThePart) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto message = [](const Eigen::Isometry3d& X) -> std::string {
+    try {
+      requireFinitePose(X, "the robot pose X_WR", "myQuery");
+    } catch (const InvalidInputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  Eigen::Isometry3d X = at(1, 2, 3);
+  EXPECT_EQ(message(X), "no error");
+  X.linear() *= 2.0;  // not rigid, but finite
+  EXPECT_EQ(message(X), "no error");
+  X.matrix()(3, 0) = nan;  // the last row is not part of the pose
+  EXPECT_EQ(message(X), "no error");
+  X = at(1, std::numeric_limits<double>::infinity(), 3);
+  EXPECT_EQ(message(X), "myQuery: the robot pose X_WR has a non-finite translation entry (NaN or infinity)");
+  X = at(1, 2, 3);
+  X.linear()(2, 1) = nan;
+  EXPECT_EQ(message(X), "myQuery: the robot pose X_WR has a non-finite rotation entry (NaN or infinity)");
+}
+
 /// A coherent sequence: B slides past A while the direction turns.
 std::vector<DirectionalInput> coherentSequence(const ConvexPolytope& a, const ConvexPolytope& b, int n) {
   std::vector<DirectionalInput> out;

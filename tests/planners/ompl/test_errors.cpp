@@ -144,11 +144,11 @@ TEST(Errors, NonFinitePosesAreErrorsNotFreeSpace) {
   expectError([&] { mdd.collides(X); }, "MddScene::collides: the robot pose X_WR has a non-finite translation");
   expectError([&] { mdd.sweep(X, Eigen::Vector3d::UnitX()); }, "MddScene::sweep: the robot pose X_WR");
   expectError([&] { directedClearance(mdd, X, Eigen::Vector3d::UnitX()); }, "non-finite translation");
-  expectError([&] { sceneDistance(mdd, X); }, "non-finite");
+  expectError([&] { sceneDistance(mdd, X); }, "sceneDistance: the robot pose X_WR has a non-finite translation");
   X.translation().x() = 0.0;
   X.linear()(1, 2) = kNaN;
   expectError([&] { mdd.collides(X); }, "non-finite rotation");
-  expectError([&] { sceneDistance(mdd, X); }, "non-finite");
+  expectError([&] { sceneDistance(mdd, X); }, "non-finite rotation");
   X.linear() = 2.0 * Eigen::Matrix3d::Identity();  // refused by the pair queries
   expectError([&] { mdd.collides(X); }, "not a rigid transform");
   // An empty world is free everywhere, but not for a NaN pose.

@@ -6,8 +6,9 @@ cubicles_mesh, apartment, maze_planar; made by scripts/run-mesh-bench.sh),
 and writes one table: per config and planner, success, median planning time
 (runs without a verified solution count at the time limit), MDD's median over
 FCL discrete's, the longest run against the limit (does a run end near its
-limit?), invalid solutions, median peak memory, and the median verification
-time per solved run; then the issue's targets with their verdicts as measured.
+limit?), invalid solutions, the median share of planning time spent in the
+checkers (where it is small, a faster checker cannot make the planner much
+faster), median peak memory, and the median verification time per solved run; then the issue's targets with their verdicts as measured.
 The text replaces what lies between `<!-- mesh-results:begin -->` and
 `<!-- mesh-results:end -->` in README.md (--readme; --marker names other
 markers), or goes to standard output.
@@ -16,6 +17,7 @@ markers), or goes to standard output.
 """
 
 import argparse
+import math
 import os
 import sys
 
@@ -33,6 +35,12 @@ def pair(values, fn):
     return " / ".join(fn(v) if v is not None else "-" for v in values)
 
 
+def share(s):
+    """The median share of planning time spent in the checkers, as a percentage."""
+    v = s.get("checking_share")
+    return "-" if v is None or math.isnan(v) else "%.0f%%" % (100 * v)
+
+
 def median_of(rows, key):
     vals = [r[key] for r in rows if r.get(key) is not None]
     return bench_report.median(vals) if vals else None
@@ -40,8 +48,9 @@ def median_of(rows, key):
 
 def overview(bench_dir, command, marker=MARKER):
     lines = ["| config (runs x limit) | planner | success mdd / fcl | median time (s) mdd / fcl | mdd / FCL | "
-             "longest run / limit mdd / fcl | invalid mdd / fcl | memory (MB) mdd / fcl | verification (s) mdd / fcl |",
-             "|---|---|---|---|---|---|---|---|---|"]
+             "longest run / limit mdd / fcl | invalid mdd / fcl | checking share mdd / fcl | memory (MB) mdd / fcl | "
+             "verification (s) mdd / fcl |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     verdicts, overruns, mdd_invalid, found = [], [], 0, []
     for c in CONFIGS:
         db = os.path.join(bench_dir, c, "bench.db")
@@ -57,13 +66,14 @@ def overview(bench_dir, command, marker=MARKER):
             limit = rows[0]["timelimit"]
             longest = [max((r["time"] for r in g if r.get("time") is not None), default=None) for g in group]
             solved = [[r for r in g if bench_report.exact(r)] for g in group]
-            lines.append("| %s, %d x %gs | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            lines.append("| %s, %d x %gs | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 c, max(len(g) for g in group), limit, p,
                 pair(st, lambda s: "%.0f%%" % (100 * s["success"])),
                 pair(st, lambda s: bench_report.fmt(s["median_time"])),
                 bench_report.fmt(st[0]["ratio"], 2) if st[0] and st[0].get("ratio") is not None else "-",
                 pair(longest, lambda t: "%.2f" % (t / limit)),
                 pair(st, lambda s: str(s["invalid"])),
+                pair(st, share),
                 pair([median_of(g, "memory") for g in group], lambda m: "%.0f" % m),
                 pair([median_of(g, "verification_time") for g in solved], lambda t: bench_report.fmt(t))))
             mdd, fcl = st

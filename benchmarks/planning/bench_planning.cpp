@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_clock.h"
 #include "mddual/generators.h"
 #include "mddual/planning/example_scenes.h"
 #include "mddual/planning/fcl_checkers.h"
@@ -71,12 +72,7 @@ struct Options {
 bool g_cpu_time = false;
 
 double nowSeconds() {
-  if (g_cpu_time) {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-  }
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return mddual::bench::nowSeconds(g_cpu_time);
 }
 
 void randomState(const mp::PlanningSpace& space, Rng& rng, ob::State* state) {

@@ -8,7 +8,8 @@ and writes one table: per config and planner, success, median planning time
 FCL discrete's, the longest run against the limit (does a run end near its
 limit?), invalid solutions, the median share of planning time spent in the
 checkers (where it is small, a faster checker cannot make the planner much
-faster), median peak memory, and the median verification time per solved run; then the issue's targets with their verdicts as measured.
+faster), median peak memory, and the median verification time per solved
+run; then the issue's targets with their verdicts as measured.
 The text replaces what lies between `<!-- mesh-results:begin -->` and
 `<!-- mesh-results:end -->` in README.md (--readme; --marker names other
 markers), or goes to standard output.
@@ -93,7 +94,8 @@ def overview(bench_dir, command, marker=MARKER):
     made_by = "scripts/mesh_results.py --readme README.md" + ("" if marker == MARKER else " --marker " + marker)
     text = ["Made by `%s` from `%s`. FCL is OMPL's discrete motion "
             "validator at the default resolution with FCL's collide(); every solution verified (exact MDD edge "
-            "check + dense FCL check); a run without a verified solution counts at the time limit." % (made_by, command), ""]
+            "check + dense FCL check); a run without a verified solution counts at the time limit."
+            % (made_by, command), ""]
     text += lines + [""]
     n_met = sum(v.endswith(": met") for v in verdicts)
     text.append("Targets as measured:")

@@ -16,22 +16,31 @@
 // the recording run plans (default 3; it stops earlier when it solves).
 // --save writes the recorded checks of the (single) config and planner to a
 // file, --load replays such a file instead of planning: the same checks for
-// two builds (the file holds the states' reals; it is not a portable format).
+// two builds. The file names its config and state size, checked on --load; the
+// states are raw doubles (not portable across machines).
 //
 // Output: one Markdown table; per (config, planner): the checks recorded
-// (those asking for lastValid), how many each checker finds invalid, the
-// mean time per check of each (all, valid only, invalid only; per-check
-// times read from the clock around each call), the mean fraction lastValid
-// keeps of the invalid checks, and MDD's pair queries and rotating sub-edges
-// (triples bounded) per check.
+// (those asking for lastValid), how many each checker finds invalid and on how
+// many they disagree (each way: "FCL valid, MDD invalid" is a contact between
+// the discrete check's samples or one of MDD's rotating false alarms; "MDD
+// valid, FCL invalid" would be a contact MDD missed), the mean time per check
+// of each (all, valid only, invalid only; per-check times read from the clock
+// around each call), the mean fraction lastValid keeps over the lastValid
+// checks both find invalid, and MDD's pair queries and rotating-search
+// triples (robot node, world node, interval) bounded per check.
+//
+// Before timing, MDD's enlarged robot pieces (built on first use by a planning
+// run) are all built, so that no pass times their one-time construction.
 #include <ompl/base/MotionValidator.h>
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 #include <algorithm>
-#include <chrono>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
+#include <cstring>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -105,38 +114,68 @@ class RecordingValidator : public ob::MotionValidator {
   Recording* rec_;
 };
 
-void save(const Recording& rec, const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error("cannot write " + path);
-  const ob::StateSpacePtr& space = rec.si->getStateSpace();
-  std::vector<double> reals;
-  for (const Recording::Check& c : rec.checks) {
-    const char lv = c.last_valid ? 1 : 0;
-    std::fwrite(&lv, 1, 1, f);
-    for (const ob::State* s : {c.s1, c.s2}) {
-      space->copyToReals(reals, s);
-      std::fwrite(reals.data(), sizeof(double), reals.size(), f);
-    }
-  }
-  std::fclose(f);
+/// First bytes of a recording file (then the config's name, the number of
+/// reals per state, the number of checks, and the checks).
+constexpr char kMagic[8] = {'M', 'D', 'D', 'R', 'E', 'C', '0', '1'};
+
+std::FILE* openFile(const std::string& path, const char* mode) {
+  std::FILE* f = std::fopen(path.c_str(), mode);
+  if (f == nullptr) throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
+  return f;
 }
 
-void load(Recording* rec, const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) throw std::runtime_error("cannot read " + path);
-  const ob::StateSpacePtr& space = rec->si->getStateSpace();
-  std::vector<double> reals(space->getValueLocations().size());
-  char lv = 0;
-  while (std::fread(&lv, 1, 1, f) == 1) {
-    Recording::Check c{rec->si->allocState(), rec->si->allocState(), lv != 0};
-    for (ob::State* s : {c.s1, c.s2}) {
-      if (std::fread(reals.data(), sizeof(double), reals.size(), f) != reals.size()) {
-        std::fclose(f);
-        throw std::runtime_error(path + ": truncated (not a recording of this config's space?)");
-      }
-      space->copyFromReals(s, reals);
+void save(const Recording& rec, const std::string& name, const std::string& path) {
+  std::FILE* f = openFile(path, "wb");
+  const ob::StateSpacePtr& space = rec.si->getStateSpace();
+  const std::uint64_t name_size = name.size(), reals = space->getValueLocations().size(), count = rec.checks.size();
+  bool ok = std::fwrite(kMagic, 1, sizeof kMagic, f) == sizeof kMagic && std::fwrite(&name_size, 8, 1, f) == 1 &&
+            std::fwrite(name.data(), 1, name.size(), f) == name.size() && std::fwrite(&reals, 8, 1, f) == 1 &&
+            std::fwrite(&count, 8, 1, f) == 1;
+  std::vector<double> values;
+  for (const Recording::Check& c : rec.checks) {
+    const char lv = c.last_valid ? 1 : 0;
+    ok = ok && std::fwrite(&lv, 1, 1, f) == 1;
+    for (const ob::State* s : {c.s1, c.s2}) {
+      space->copyToReals(values, s);
+      ok = ok && std::fwrite(values.data(), sizeof(double), values.size(), f) == values.size();
     }
-    rec->checks.push_back(c);
+  }
+  if (std::fclose(f) != 0 || !ok) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+}
+
+void load(Recording* rec, const std::string& name, const std::string& path) {
+  std::FILE* f = openFile(path, "rb");
+  const auto fail = [&](const std::string& what) {
+    std::fclose(f);
+    throw std::runtime_error(path + ": " + what);
+  };
+  const ob::StateSpacePtr& space = rec->si->getStateSpace();
+  char magic[sizeof kMagic] = {};
+  std::uint64_t name_size = 0, reals = 0, count = 0;
+  if (std::fread(magic, 1, sizeof magic, f) != sizeof magic || std::memcmp(magic, kMagic, sizeof magic) != 0 ||
+      std::fread(&name_size, 8, 1, f) != 1 || name_size > 4096) {
+    fail("not a recording of mddual_bench_replay (--save)");
+  }
+  std::string recorded(name_size, '\0');
+  if (std::fread(&recorded[0], 1, recorded.size(), f) != recorded.size() || std::fread(&reals, 8, 1, f) != 1 ||
+      std::fread(&count, 8, 1, f) != 1) {
+    fail("truncated header");
+  }
+  if (recorded != name) fail("recorded on config '" + recorded + "', not '" + name + "'");
+  if (reals != space->getValueLocations().size())
+    fail("states of " + std::to_string(reals) + " values, not this space's");
+  std::vector<double> values(reals);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    char lv = 0;
+    Recording::Check c{rec->si->allocState(), rec->si->allocState(), false};
+    rec->checks.push_back(c);  // owned from here on (freed by ~Recording)
+    bool ok = std::fread(&lv, 1, 1, f) == 1;
+    for (ob::State* s : {c.s1, c.s2}) {
+      ok = ok && std::fread(values.data(), sizeof(double), values.size(), f) == values.size();
+      if (ok) space->copyFromReals(s, values);
+    }
+    if (!ok) fail("truncated at check " + std::to_string(k) + " of " + std::to_string(count));
+    rec->checks.back().last_valid = lv != 0;
   }
   std::fclose(f);
 }
@@ -145,14 +184,15 @@ void load(Recording* rec, const std::string& path) {
 struct Pass {
   double seconds = 0.0, valid_seconds = 0.0, invalid_seconds = 0.0;
   int invalid = 0;
-  double kept = 0.0;  ///< sum of lastValid.second over the invalid lastValid checks
-  int invalid_last_valid = 0;
-  std::vector<char> verdicts;  ///< 1: valid
+  std::vector<char> verdicts;  ///< per check, 1: valid
+  std::vector<double> kept;    ///< per check, lastValid.second (invalid lastValid checks; else 0)
+  mp::CheckStats stats;        ///< the checkers' counts over the pass
 };
 
 Pass replay(const Recording& rec, const ob::SpaceInformationPtr& si, const ob::MotionValidatorPtr& validator) {
   Pass out;
   out.verdicts.reserve(rec.checks.size());
+  out.kept.reserve(rec.checks.size());
   ob::State* last = si->allocState();
   for (const Recording::Check& c : rec.checks) {
     std::pair<ob::State*, double> lv(last, 0.0);
@@ -162,13 +202,8 @@ Pass replay(const Recording& rec, const ob::SpaceInformationPtr& si, const ob::M
     out.seconds += s;
     (valid ? out.valid_seconds : out.invalid_seconds) += s;
     out.verdicts.push_back(valid ? 1 : 0);
-    if (!valid) {
-      ++out.invalid;
-      if (c.last_valid) {
-        ++out.invalid_last_valid;
-        out.kept += lv.second;
-      }
-    }
+    out.kept.push_back(!valid && c.last_valid ? lv.second : 0.0);
+    if (!valid) ++out.invalid;
   }
   si->freeState(last);
   return out;
@@ -197,7 +232,7 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
   rec.si = si;
   // 1. The recording: the planner on the MDD checkers, or a saved file.
   if (!opt.load.empty()) {
-    load(&rec, opt.load);
+    load(&rec, problem.name, opt.load);
   } else {
     si->setMotionValidator(std::make_shared<RecordingValidator>(si, mdd_validator, &rec));
     si->setup();
@@ -209,41 +244,50 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
     si->setMotionValidator(mdd_validator);
     si->setup();
   }
-  if (!opt.save.empty()) save(rec, opt.save);
-  if (rec.checks.empty()) throw std::runtime_error(cfg + ": " + planner + " made no motion check");
-  // 2. Replay, alternating the checkers; the fastest pass of each.
-  Pass best_mdd, best_fcl;
-  best_mdd.seconds = best_fcl.seconds = 1e300;
-  std::uint64_t pairs = 0, sub_edges = 0;
+  if (!opt.save.empty()) save(rec, problem.name, opt.save);
+  if (rec.checks.empty()) throw std::runtime_error(cfg + ": " + planner + ": no motion check recorded");
+  // 2. MDD's one-time set-up (see the file comment), then the replay,
+  //    alternating the checkers; the fastest pass of each.
+  const mp::MddScene& scene = *mdd.mddScene();
+  for (int level = 0; level <= scene.refinementLevels(); ++level) {
+    for (int i = 0; i < static_cast<int>(scene.robot().pieces().size()); ++i) scene.enlargedPiece(level, i);
+  }
+  Pass m, f;
+  m.seconds = f.seconds = 1e300;
   for (int p = 0; p < opt.passes; ++p) {
     mdd.resetStats();
-    Pass m = replay(rec, si, mdd_validator);
-    const mp::CheckStats st = mdd.stats();
-    pairs = st.pair_queries;
-    sub_edges = st.sub_edges;
-    if (m.seconds < best_mdd.seconds) best_mdd = std::move(m);
-    Pass f = replay(rec, fcl.spaceInformation(), fcl.spaceInformation()->getMotionValidator());
-    if (f.seconds < best_fcl.seconds) best_fcl = std::move(f);
+    Pass pass = replay(rec, si, mdd_validator);
+    pass.stats = mdd.stats();
+    if (pass.seconds < m.seconds) m = std::move(pass);
+    pass = replay(rec, fcl.spaceInformation(), fcl.spaceInformation()->getMotionValidator());
+    if (pass.seconds < f.seconds) f = std::move(pass);
   }
   // 3. The row.
   const double n = static_cast<double>(rec.checks.size());
-  const auto lv_count = std::count_if(rec.checks.begin(), rec.checks.end(), [](const auto& c) { return c.last_valid; });
-  int fcl_valid_mdd_invalid = 0;
+  long last_valid = 0, mdd_only = 0, fcl_only = 0, both_lv = 0;
+  double kept_m = 0.0, kept_f = 0.0;
   for (std::size_t k = 0; k < rec.checks.size(); ++k) {
-    if (best_mdd.verdicts[k] == 0 && best_fcl.verdicts[k] == 1) ++fcl_valid_mdd_invalid;
+    last_valid += rec.checks[k].last_valid ? 1 : 0;
+    mdd_only += m.verdicts[k] == 0 && f.verdicts[k] == 1;
+    fcl_only += m.verdicts[k] == 1 && f.verdicts[k] == 0;
+    if (rec.checks[k].last_valid && m.verdicts[k] == 0 && f.verdicts[k] == 0) {
+      ++both_lv;
+      kept_m += m.kept[k];
+      kept_f += f.kept[k];
+    }
   }
   const auto mean = [](double s, int count) { return count > 0 ? s / count : 0.0; };
-  const int valid_m = static_cast<int>(n) - best_mdd.invalid, valid_f = static_cast<int>(n) - best_fcl.invalid;
+  const int valid_m = static_cast<int>(n) - m.invalid, valid_f = static_cast<int>(n) - f.invalid;
+  const std::string kept = both_lv > 0 ? num("%.3f", kept_m / static_cast<double>(both_lv)) + " / " +
+                                             num("%.3f", kept_f / static_cast<double>(both_lv))
+                                       : "- / -";
   std::printf(
-      "| %s | %s | %zu (%ld) | %d / %d (%d) | %s | %s | **%.1fx** | %s / %s | %s / %s | %s / %s | %.1f / %.0f |\n",
-      problem.name.c_str(), planner.c_str(), rec.checks.size(), static_cast<long>(lv_count), best_mdd.invalid,
-      best_fcl.invalid, fcl_valid_mdd_invalid, us(best_mdd.seconds / n).c_str(), us(best_fcl.seconds / n).c_str(),
-      best_fcl.seconds / best_mdd.seconds, us(mean(best_mdd.valid_seconds, valid_m)).c_str(),
-      us(mean(best_fcl.valid_seconds, valid_f)).c_str(), us(mean(best_mdd.invalid_seconds, best_mdd.invalid)).c_str(),
-      us(mean(best_fcl.invalid_seconds, best_fcl.invalid)).c_str(),
-      best_mdd.invalid_last_valid > 0 ? num("%.3f", best_mdd.kept / best_mdd.invalid_last_valid).c_str() : "-",
-      best_fcl.invalid_last_valid > 0 ? num("%.3f", best_fcl.kept / best_fcl.invalid_last_valid).c_str() : "-",
-      static_cast<double>(pairs) / n, static_cast<double>(sub_edges) / n);
+      "| %s | %s | %zu (%ld) | %d / %d (%ld / %ld) | %s | %s | **%.1fx** | %s / %s | %s / %s | %s | %.1f / %.0f |\n",
+      problem.name.c_str(), planner.c_str(), rec.checks.size(), last_valid, m.invalid, f.invalid, mdd_only, fcl_only,
+      us(m.seconds / n).c_str(), us(f.seconds / n).c_str(), f.seconds / m.seconds,
+      us(mean(m.valid_seconds, valid_m)).c_str(), us(mean(f.valid_seconds, valid_f)).c_str(),
+      us(mean(m.invalid_seconds, m.invalid)).c_str(), us(mean(f.invalid_seconds, f.invalid)).c_str(), kept.c_str(),
+      static_cast<double>(m.stats.pair_queries) / n, static_cast<double>(m.stats.sub_edges) / n);
   std::fflush(stdout);
 }
 
@@ -255,6 +299,19 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
   std::exit(2);
 }
 
+/// `text` as a number of the option `option`; exits with a message naming
+/// both when it is not one (or not finite).
+double parseNumber(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno != 0 || !std::isfinite(v)) {
+    std::fprintf(stderr, "mddual_bench_replay: %s: '%s' is not a number\n", option.c_str(), text.c_str());
+    std::exit(2);
+  }
+  return v;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -262,7 +319,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage(argv[0]);
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "mddual_bench_replay: %s needs a value\n", a.c_str());
+        usage(argv[0]);
+      }
       return argv[++i];
     };
     if (a == "--config") {
@@ -270,11 +330,15 @@ int main(int argc, char** argv) {
     } else if (a == "--planner") {
       opt.planners.push_back(value());
     } else if (a == "--seconds") {
-      opt.seconds = std::atof(value().c_str());
+      opt.seconds = parseNumber(a, value());
+      if (!(opt.seconds > 0.0)) {
+        std::fprintf(stderr, "mddual_bench_replay: --seconds must be > 0\n");
+        return 2;
+      }
     } else if (a == "--seed") {
-      opt.seed = std::strtoul(value().c_str(), nullptr, 10);
+      opt.seed = static_cast<unsigned long>(parseNumber(a, value()));
     } else if (a == "--passes") {
-      opt.passes = std::max(1, std::atoi(value().c_str()));
+      opt.passes = std::max(1, static_cast<int>(parseNumber(a, value())));
     } else if (a == "--cpu") {
       opt.cpu = true;
     } else if (a == "--save") {
@@ -282,10 +346,14 @@ int main(int argc, char** argv) {
     } else if (a == "--load") {
       opt.load = value();
     } else {
+      std::fprintf(stderr, "mddual_bench_replay: unknown option '%s'\n", a.c_str());
       usage(argv[0]);
     }
   }
-  if (opt.configs.empty() || !(opt.seconds > 0.0)) usage(argv[0]);
+  if (opt.configs.empty()) {
+    std::fprintf(stderr, "mddual_bench_replay: no --config given\n");
+    usage(argv[0]);
+  }
   if (opt.planners.empty()) opt.planners = {"kpiece", "rrtconnect"};
   if ((!opt.save.empty() || !opt.load.empty()) && opt.configs.size() * opt.planners.size() != 1) {
     std::fprintf(stderr, "%s: --save and --load take one config and one planner\n", argv[0]);
@@ -294,10 +362,13 @@ int main(int argc, char** argv) {
   g_cpu_time = opt.cpu;
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   ompl::RNG::setSeed(opt.seed);  // before any of OMPL's generators exists
+  const std::string source = opt.load.empty()
+                                 ? "seed " + std::to_string(opt.seed) + ", " + num("%g", opt.seconds) + " s of planning"
+                                 : "loaded from " + opt.load;
   std::printf(
-      "Motion checks a planner made with the MDD checkers (seed %lu, %g s of planning), replayed with each checker "
-      "(fastest of %d passes, %s):\n\n",
-      opt.seed, opt.seconds, opt.passes, opt.cpu ? "thread CPU time" : "wall-clock time");
+      "Motion checks a planner made with the MDD checkers (%s), replayed with each checker (fastest of %d passes, "
+      "%s):\n\n",
+      source.c_str(), opt.passes, opt.cpu ? "thread CPU time" : "wall-clock time");
   std::printf(
       "| config | planner | checks (lastValid) | invalid MDD / FCL (FCL valid, MDD invalid) | MDD (us) | OMPL discrete "
       "+ FCL "

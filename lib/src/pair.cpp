@@ -27,7 +27,7 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
         << " in magnitude (out of the supported range)";
     throw InvalidInputError(msg.str());
   }
-  if (!finite) requireFinitePose(X, std::string("pose ") + name, query);  // throws, saying which part
+  if (!finite) requireFinitePose(X, (std::string("pose ") + name).c_str(), query);  // throws, saying which part
   const bool rotation = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < 1e-9 && R.determinant() > 0.0;
   if (!rotation) {
     throw InvalidInputError(std::string(query) + ": pose " + name +
@@ -143,7 +143,7 @@ std::string toJsonLine(const DirectionalInput& input, const std::string& id) {
   return out.str();
 }
 
-void requireFinitePose(const Eigen::Isometry3d& X, const std::string& what, const char* query) {
+void requireFinitePose(const Eigen::Isometry3d& X, const char* what, const char* query) {
   if (X.matrix().topRows<3>().allFinite()) return;
   throw InvalidInputError(std::string(query) + ": " + what + " has a non-finite " +
                           (X.linear().allFinite() ? "translation" : "rotation") + " entry (NaN or infinity)");

@@ -237,9 +237,10 @@ std::string toJsonLine(const DirectionalInput& input, const std::string& id = "r
 /// Throws InvalidInputError "<query>: <what> has a non-finite translation (or
 /// rotation) entry (NaN or infinity)" when X has a NaN or infinite entry in
 /// its top three rows; otherwise does nothing (12 comparisons, no rigidity
-/// check: the pair queries check that). For callers that test a pose before
-/// a traversal, where a NaN pose would fail every volume test and read as
+/// check: the pair queries check that; no allocation unless it throws: it
+/// runs on every state check). For callers that test a pose before a
+/// traversal, where a NaN pose would fail every volume test and read as
 /// "free": the core's hierarchy queries and the planning layer's scenes.
-void requireFinitePose(const Eigen::Isometry3d& X, const std::string& what, const char* query);
+void requireFinitePose(const Eigen::Isometry3d& X, const char* what, const char* query);
 
 }  // namespace mddual

@@ -403,6 +403,7 @@ SweepResult MddScene::sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d
 
 SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, double max_distance,
                                bool first_contact, double stop_within) const {
+  // A NaN pose fails every volume test and would reach no pair: "free".
   requireFinitePose(X_WR, "the robot pose X_WR", "MddScene::sweep");
   SweepResult result;
   // Divided by its largest coordinate first: |v| under- or overflows for

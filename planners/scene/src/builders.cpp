@@ -19,7 +19,9 @@ std::string badCoordinate(const Eigen::Vector3d& v) {
   return std::string("its ") + axes[axis] + " coordinate is " + (std::isnan(v[axis]) ? "NaN" : "infinite");
 }
 
-void requireFinitePose(const Eigen::Isometry3d& X, const std::string& where) {
+/// A shape's or mesh's pose in a body: a loader's SceneError naming `where` (the
+/// core's requireFinitePose is for query poses, InvalidInputError).
+void requireFiniteShapePose(const Eigen::Isometry3d& X, const std::string& where) {
   if (!X.matrix().allFinite()) throw SceneError(where + ": the pose has a non-finite entry");
 }
 
@@ -126,13 +128,13 @@ Shape Shape::convex(std::vector<Eigen::Vector3d> points, const Eigen::Isometry3d
 std::vector<Piece> meshArrayPieces(const VertexArray& vertices, const TriangleArray& triangles,
                                    const Eigen::Isometry3d& X_OM, const LoadOptions& options, const std::string& name,
                                    MeshInfo* info) {
-  requireFinitePose(X_OM, name);
+  requireFiniteShapePose(X_OM, name);
   const detail::MeshData data = meshData(vertices, triangles, name);
   return detail::meshDataPieces(data, name, Eigen::Vector3d::Ones(), X_OM, options, name, info);
 }
 
 Piece convexPiece(const std::vector<Eigen::Vector3d>& points_S, const Eigen::Isometry3d& X_OS, std::string origin) {
-  requireFinitePose(X_OS, origin);
+  requireFiniteShapePose(X_OS, origin);
   if (points_S.empty()) throw SceneError(origin + ": the point set is empty");
   std::vector<Eigen::Vector3d> points;
   points.reserve(points_S.size());

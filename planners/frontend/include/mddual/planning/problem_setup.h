@@ -170,6 +170,9 @@ class ProblemSetup {
   const ompl::geometric::SimpleSetup& simpleSetup() const { return *ss_; }
   const ompl::base::SpaceInformationPtr& spaceInformation() const { return ss_->getSpaceInformation(); }
   const PlanningSpacePtr& planningSpace() const { return space_; }
+  /// The MDD checkers' scene (checker kMdd), else null: e.g. to build its
+  /// enlarged robot pieces before timing (MddScene::enlargedPiece).
+  const MddScene* mddScene() const { return mdd_motion_ ? &mdd_motion_->scene() : nullptr; }
 
   /// The planner of a cfg's [planner] entry: makePlanner(spec.name, si,
   /// spec.params), named spec.name unless its params set "name". Throws

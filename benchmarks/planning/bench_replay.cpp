@@ -370,10 +370,9 @@ int main(int argc, char** argv) {
       "%s):\n\n",
       source.c_str(), opt.passes, opt.cpu ? "thread CPU time" : "wall-clock time");
   std::printf(
-      "| config | planner | checks (lastValid) | invalid MDD / FCL (FCL valid, MDD invalid) | MDD (us) | OMPL discrete "
-      "+ FCL "
-      "(us) | discrete / MDD | valid only MDD / FCL (us) | invalid only MDD / FCL (us) | kept MDD / FCL | MDD pair "
-      "queries / sub-edges |\n");
+      "| config | planner | checks (lastValid) | invalid MDD / FCL (only MDD / only FCL) | MDD (us) | OMPL discrete + "
+      "FCL (us) | discrete / MDD | valid only MDD / FCL (us) | invalid only MDD / FCL (us) | kept MDD / FCL | MDD "
+      "pair queries / triples |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& cfg : opt.configs) {
     for (const std::string& planner : opt.planners) {

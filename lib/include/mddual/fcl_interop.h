@@ -4,7 +4,8 @@
 // benchmarks against FCL's casts, the tests against FCL's distance).
 //
 // Header-only, and the only core header that includes FCL: include it where
-// you link FCL (0.7 or later: the constructor with throw_if_invalid; the core library itself does not need FCL).
+// you link FCL, 0.7 or later (the constructor with throw_if_invalid). The
+// core library itself does not need FCL.
 #pragma once
 
 #include <fcl/geometry/shape/convex.h>

@@ -240,6 +240,12 @@ std::string clipForMessage(const std::string& text) {
 
 namespace {
 
+/// "<cfg>:<line>: " for a planner entry of the cfg, "<cfg>: " for one made
+/// in code (line 0: "tiny.cfg:0:" named no line of the file).
+std::string specWhere(const std::string& cfg, const scene::PlannerSpec& spec) {
+  return spec.line > 0 ? cfg + ":" + std::to_string(spec.line) + ": " : cfg + ": ";
+}
+
 std::string number(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", x);
@@ -385,7 +391,7 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
   // 3. Space parameters, then the values the planners' contexts will restore.
   applyParameters(cfg.space_parameters, where + ": [problem] ");
   for (const scene::PlannerSpec& spec : cfg.planners) {
-    const std::string at = where + ":" + std::to_string(spec.line) + ": problem.";
+    const std::string at = specWhere(where, spec) + "problem.";
     for (const auto& [key, value] : spec.context) {
       if (key == "sampler") continue;
       std::string current;
@@ -496,11 +502,11 @@ void ProblemSetup::applyPlannerContext(const scene::PlannerSpec& spec) {
   const ob::SpaceInformationPtr& si = ss_->getSpaceInformation();
   for (const auto& [key, value] : baseline_) si->params().setParam(key, value);
   setSampler(baseline_sampler_, problem_.cfgName() + ": [problem] ");
-  applyParameters(spec.context, problem_.cfgName() + ":" + std::to_string(spec.line) + ": problem.");
+  applyParameters(spec.context, specWhere(problem_.cfgName(), spec) + "problem.");
 }
 
 ob::PlannerPtr ProblemSetup::makePlanner(const scene::PlannerSpec& spec) const {
-  const std::string at = problem_.cfgName() + ":" + std::to_string(spec.line) + ": ";
+  const std::string at = specWhere(problem_.cfgName(), spec);
   ob::PlannerPtr planner;
   try {
     planner = planning::makePlanner(spec.name, ss_->getSpaceInformation(), spec.params);

@@ -133,6 +133,17 @@ TEST_F(FrontendSetup, SetsSpaceParametersPlannerParametersAndContexts) {
     EXPECT_EQ(rrt->getName(), "rrt");
     EXPECT_EQ(rrt->params().getParam("goal_bias")->getValue(), "0.25");
     EXPECT_EQ(setup.makePlanner(problem.config.planners[2])->getName(), "mdd_rrtconnect");
+    // A planner made in code (no cfg line): the message names the cfg, not a line 0.
+    scene::PlannerSpec unknown;
+    unknown.name = "nosuch";
+    try {
+      setup.makePlanner(unknown);
+      ADD_FAILURE() << "an unknown planner was made";
+    } catch (const InvalidInputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("tiny.cfg: unknown planner 'nosuch'", 0), 0u) << e.what();
+    }
+    // The MDD scene is exposed only with the MDD checkers.
+    EXPECT_EQ(setup.mddScene() != nullptr, kind == CheckerKind::kMdd);
 
     // Contexts: rrt's on top of the space parameters, and reset for the others.
     setup.applyPlannerContext(problem.config.planners[1]);

@@ -40,7 +40,7 @@
 #include <string>
 #include <vector>
 
-#include "bench_clock.h"
+#include "bench_support.h"
 #include "mddual/generators.h"
 #include "mddual/planning/example_scenes.h"
 #include "mddual/planning/fcl_checkers.h"
@@ -128,10 +128,7 @@ double timePerItem(int items, int passes, const std::function<void()>& pass) {
 }
 
 std::string us(double seconds) {
-  char buf[32];
-  const double v = seconds * 1e6;
-  std::snprintf(buf, sizeof buf, v < 10 ? "%.2f" : (v < 100 ? "%.1f" : "%.0f"), v);
-  return buf;
+  return mddual::bench::micros(seconds);
 }
 
 struct Setup {
@@ -191,10 +188,8 @@ void benchScene(const mddual::planning::examples::ExampleScene& scene, const Opt
   // (with one pass, the lastValid rows did: 287 against 172 us per bugtrap
   // edge with a second pass).
   const double setup_start = nowSeconds();
+  mddual::bench::buildEnlargedPieces(*s.mdd);
   const int pieces = static_cast<int>(scene.robot->pieces().size());
-  for (int level = 0; level <= s.mdd->refinementLevels(); ++level) {
-    for (int i = 0; i < pieces; ++i) s.mdd->enlargedPiece(level, i);
-  }
   std::printf("MDD one-time set-up: enlarged robot pieces (%d levels x %d pieces) %.1f ms (%s)\n\n",
               s.mdd->refinementLevels() + 1, pieces, 1e3 * (nowSeconds() - setup_start),
               opt.cpu ? "thread CPU time" : "wall-clock time");

@@ -48,7 +48,7 @@
 #include <utility>
 #include <vector>
 
-#include "bench_clock.h"
+#include "bench_support.h"
 #include "mddual/planning/problem_setup.h"
 
 namespace {
@@ -210,10 +210,7 @@ Pass replay(const Recording& rec, const ob::SpaceInformationPtr& si, const ob::M
 }
 
 std::string us(double seconds) {
-  char buf[32];
-  const double v = seconds * 1e6;
-  std::snprintf(buf, sizeof buf, v < 10 ? "%.2f" : (v < 100 ? "%.1f" : "%.0f"), v);
-  return buf;
+  return mddual::bench::micros(seconds);
 }
 
 std::string num(const char* format, double v) {
@@ -248,10 +245,7 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
   if (rec.checks.empty()) throw std::runtime_error(cfg + ": " + planner + ": no motion check recorded");
   // 2. MDD's one-time set-up (see the file comment), then the replay,
   //    alternating the checkers; the fastest pass of each.
-  const mp::MddScene& scene = *mdd.mddScene();
-  for (int level = 0; level <= scene.refinementLevels(); ++level) {
-    for (int i = 0; i < static_cast<int>(scene.robot().pieces().size()); ++i) scene.enlargedPiece(level, i);
-  }
+  mddual::bench::buildEnlargedPieces(*mdd.mddScene());
   Pass m, f;
   m.seconds = f.seconds = 1e300;
   for (int p = 0; p < opt.passes; ++p) {

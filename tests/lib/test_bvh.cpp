@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <set>
+#include <sstream>
 #include <utility>
 
 #include "mddual/bvh.h"
@@ -24,6 +26,23 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double uniform(Rng& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+/// A vector of coordinates uniform in [lo, hi], drawn x, y, z in that order.
+Eigen::Vector3d uniformVector(Rng& rng, double lo, double hi) {
+  Eigen::Vector3d v;
+  for (int k = 0; k < 3; ++k) v[k] = uniform(rng, lo, hi);
+  return v;
+}
+
+/// A box centred within `spread` of the origin, of random axes (or the given
+/// ones) and half extents in [half_lo, half_hi].
+Obb randomBox(Rng& rng, double spread, double half_lo, double half_hi, const Eigen::Matrix3d* axes = nullptr) {
+  Obb box;
+  box.centre_F = uniformVector(rng, -spread, spread);
+  box.axes_F = axes ? *axes : generators::randomRotation(rng);
+  box.half = uniformVector(rng, half_lo, half_hi);
+  return box;
 }
 
 Eigen::Isometry3d randomPose(Rng& rng, double spread) {
@@ -460,13 +479,8 @@ TEST(Bvh, ObbTestsAgreeWithTheCoreOnTheBoxesAsPolytopes) {
   Rng rng(8);
   int disjoint = 0, overlapping = 0, faces_only_cut = 0;
   for (int q = 0; q < 2000; ++q) {
-    Obb a, b;
-    a.centre_F = Eigen::Vector3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-    b.centre_F = Eigen::Vector3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-    a.axes_F = generators::randomRotation(rng);
-    b.axes_F = q % 4 == 0 ? a.axes_F : generators::randomRotation(rng);  // parallel edges too
-    a.half = Eigen::Vector3d(uniform(rng, 0.05, 1), uniform(rng, 0.05, 1), uniform(rng, 0.05, 1));
-    b.half = Eigen::Vector3d(uniform(rng, 0.05, 1), uniform(rng, 0.05, 1), uniform(rng, 0.05, 1));
+    const Obb a = randomBox(rng, 1.0, 0.05, 1.0);
+    const Obb b = randomBox(rng, 1.0, 0.05, 1.0, q % 4 == 0 ? &a.axes_F : nullptr);  // parallel edges too
     const auto ca = a.corners(), cb = b.corners();
     const ConvexPolytope pa = ConvexPolytope::fromPoints(Points(ca.begin(), ca.end()));
     const ConvexPolytope pb = ConvexPolytope::fromPoints(Points(cb.begin(), cb.end()));
@@ -506,6 +520,50 @@ TEST(Bvh, ObbTestsAgreeWithTheCoreOnTheBoxesAsPolytopes) {
   EXPECT_GT(disjoint, 200);
   EXPECT_GT(overlapping, 200);
   EXPECT_GT(faces_only_cut, 50);  // the edge axes do cut some intervals: the comparison is not vacuous
+}
+
+TEST(Bvh, InnerCastAnswersAsTwoSeparateCasts) {
+  // obbCastIntervalInner: the grown box's interval as obbCastInterval gives
+  // it, and the inner box's face-axes verdict as obbCastIntervalFaces with no
+  // slack gives it (true when the grown box is cleared).
+  Rng rng(21);
+  int grown_meets = 0, inner_apart_while_grown_meets = 0, inner_meets = 0;
+  for (int q = 0; q < 4000; ++q) {
+    const Obb fixed = randomBox(rng, 1.0, 0.05, 1.0);
+    Obb grown = randomBox(rng, 2.0, 0.02, 0.5, q % 5 == 0 ? &fixed.axes_F : nullptr);
+    const Eigen::Vector3d inner_half = grown.half;
+    grown.half += Eigen::Vector3d::Constant(uniform(rng, 0.0, 0.6));
+    const Eigen::Vector3d u = q % 7 == 0 ? Eigen::Vector3d::UnitX() : generators::randomUnitVector(rng);
+    const double max_s = q % 3 == 0 ? 0.5 : 3.0;
+    const double slack = q % 2 == 0 ? 0.0 : 1e-9;
+    double lo = -1, hi = -1, want_lo = -1, want_hi = -1;
+    bool inner_apart = false;
+    const bool meets = obbCastIntervalInner(fixed, grown, inner_half, u, max_s, slack, &lo, &hi, &inner_apart);
+    const bool want = obbCastInterval(fixed, grown, u, max_s, slack, &want_lo, &want_hi);
+    Obb inner = grown;
+    inner.half = inner_half;
+    double face_lo = 0, face_hi = 0;
+    const bool want_inner_apart = !obbCastIntervalFaces(fixed, inner, u, max_s, 0.0, &face_lo, &face_hi);
+    std::ostringstream repro;
+    repro << std::setprecision(17) << "query " << q << ": fixed " << fixed.centre_F.transpose() << " / "
+          << fixed.half.transpose() << ", moving " << grown.centre_F.transpose() << " / " << grown.half.transpose()
+          << ", inner half " << inner_half.transpose() << ", u " << u.transpose() << ", max_s " << max_s;
+    ASSERT_EQ(meets, want) << repro.str();
+    if (meets) {
+      EXPECT_EQ(lo, want_lo) << repro.str();
+      EXPECT_EQ(hi, want_hi) << repro.str();
+      EXPECT_EQ(inner_apart, want_inner_apart) << repro.str();
+      ++grown_meets;
+      inner_apart_while_grown_meets += inner_apart;
+      inner_meets += !inner_apart;
+    } else {
+      EXPECT_TRUE(inner_apart) << repro.str();
+    }
+  }
+  // Both answers of the inner test occur while the grown boxes meet.
+  EXPECT_GT(grown_meets, 1000);
+  EXPECT_GT(inner_apart_while_grown_meets, 200);
+  EXPECT_GT(inner_meets, 200);
 }
 
 TEST(Bvh, DegenerateInputs) {

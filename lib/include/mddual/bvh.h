@@ -104,6 +104,20 @@ bool obbCastInterval(const Obb& fixed, const Obb& moving, const Eigen::Vector3d&
 /// alone separate the boxes for every s).
 bool obbCastIntervalFaces(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& u, double max_s, double slack,
                           double* s_lo, double* s_hi);
+/// obbCastInterval (with the slack), and in the same pass the face-axes
+/// test of a smaller box inside `moving`: its centre and axes, half extents
+/// inner_half (each <= moving.half). *inner_apart is set to whether that
+/// inner box, translated by s u, is separated from `fixed` for every s in
+/// [0, max_s]: when this returns true, on the 6 face axes with no slack, as
+/// obbCastIntervalFaces with slack 0 would say of it; when this returns
+/// false, true (the inner box lies inside `moving`). For a
+/// traversal that grows a node's box (checkRotating's motion growth) and
+/// asks whether the growth is what keeps two nodes from being separated: the
+/// frame and speeds along the face axes are shared, so the second answer
+/// costs six more radii and cuts.
+bool obbCastIntervalInner(const Obb& fixed, const Obb& moving, const Eigen::Vector3d& inner_half,
+                          const Eigen::Vector3d& u, double max_s, double slack, double* s_lo, double* s_hi,
+                          bool* inner_apart);
 
 /// Whether the axis-aligned box with centre c and half extents h, translated
 /// by s u for s in [0, max_s] (max_s may be +infinity; u any direction, zero

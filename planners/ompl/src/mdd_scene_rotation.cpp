@@ -70,6 +70,13 @@ bool later(const Triple& a, const Triple& b) {
   return a.bound > b.bound;
 }
 
+/// Whether halving [ta, tb] gives two shorter intervals (false once the
+/// interval is a few ulps long: its middle rounds to an end).
+bool halvable(double ta, double tb) {
+  const double tm = 0.5 * (ta + tb);
+  return ta < tm && tm < tb;
+}
+
 /// v / length, or zero when length (|v|) is zero.
 Eigen::Vector3d unitOrZero(const Eigen::Vector3d& v, double length) {
   return length > 0.0 ? Eigen::Vector3d(v / length) : Eigen::Vector3d::Zero();
@@ -269,7 +276,15 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     int level = 0;
     while (level < finest && delta_ / std::ldexp(1.0, level + 1) >= e) ++level;
     LeafResult out_leaf;
-    out_leaf.finest = level == finest;
+    // A finer level is out of reach when its enlargement is not above twice
+    // the growth's round-off part (ps.any), which halving the interval does
+    // not shrink (only `across` halves): a hit here is then as final as one
+    // at the finest level, a conservative verdict. (Without this, a
+    // rotation_tolerance near its minimum, 1e-6 of the robot radius, with 8
+    // levels, whose finest enlargement is below 1e-8 of it, halved the
+    // intervals of a pair closer than that without end: pinned in
+    // test_mdd_scene_rotation.cpp.)
+    out_leaf.finest = level == finest || delta_ / std::ldexp(1.0, level + 1) <= 2.0 * ps.any;
     out_leaf.fraction = I.ta;
     out_leaf.contact.robot_piece = i;
     out_leaf.contact.world_piece = j;
@@ -324,6 +339,16 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     while (!stack.empty()) {
       const Interval I = intervals[static_cast<std::size_t>(stack.back())];
       stack.pop_back();
+      if (!halvable(I.ta, I.tb)) {
+        // Refuted at a coarse level on an interval that no longer halves
+        // (not seen: leafQuery calls a level final before that): the edge is
+        // declared colliding, conservatively.
+        best = I.ta;
+        best_contact = PieceContact();
+        best_contact.robot_piece = i;
+        best_contact.world_piece = j;
+        return true;
+      }
       const double tm = 0.5 * (I.ta + I.tb);
       for (const int half : {makeInterval(tm, I.tb), makeInterval(I.ta, tm)}) {
         const Interval& H = intervals[static_cast<std::size_t>(half)];
@@ -369,9 +394,14 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // The sweep bound() computed when the triple was pushed, if still posed.
     const PartSweep ps = posed.rn == t.robot && posed.iv == t.interval ? posed.sweep : sweepOf(N, I);
     const double e = ps.total();
+    const bool can_halve = halvable(I.ta, I.tb);
     if (!N.isLeaf() || !M.isLeaf()) {
-      // Split the interval when e is not small against the nodes that have
-      // children; otherwise the larger of them.
+      // Split the interval when its growth is not small against the nodes
+      // that have children; otherwise the larger of them. The growth
+      // compared is the part that halving the interval shrinks (ps.across,
+      // not e: e's round-off part ps.any stays, and nodes smaller than 10^7
+      // times it, far from the body origin, had their interval halved
+      // without end; pinned in test_mdd_scene_rotation.cpp).
       const double rn = N.isLeaf() ? -1.0 : N.radius;
       const double rm = M.isLeaf() ? -1.0 : M.radius;
       // Split the interval when e is large against both nodes; keep it
@@ -384,10 +414,12 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       // second cast, it was 14% of checkRotating's instructions on bugtrap's
       // RRT-Connect checks (callgrind, mddual_bench_replay).
       const double r = std::max(rn, rm);
-      bool split_time = e > kTimeSplitAlways * r;
-      if (!split_time && e > kTimeSplitNever * r && t.ungrown != Ungrown::kUnknown) {
+      const double growth = ps.across;
+      const bool in_band = can_halve && growth > kTimeSplitNever * r;
+      bool split_time = can_halve && growth > kTimeSplitAlways * r;
+      if (!split_time && in_band && t.ungrown != Ungrown::kUnknown) {
         split_time = t.ungrown == Ungrown::kApart;
-      } else if (!split_time && e > kTimeSplitNever * r) {
+      } else if (!split_time && in_band) {
         const Obb box_W = N.obb.transformed(ps.X_WR_start, 0.0);
         const double length = ps.v_W.norm();
         const Eigen::Vector3d u_W = unitOrZero(ps.v_W, length);
@@ -412,16 +444,29 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       }
       continue;
     }
-    if (e > delta_) {
+    if (e > delta_ && can_halve) {
       splitTime(t, I);
       continue;
     }
     const int i = robot_tree_.leafPiece(t.robot);
     const int j = worldLeaf(t.world);
     if (j < 0) continue;  // the piece is not in the world
-    const LeafResult r = leafQuery(i, j, I, ps);
+    // On an interval that no longer halves (not seen: the growth halves with
+    // it down to its round-off part, below 1e-6 of delta), no enlarged piece
+    // may hold the motion (e > delta) and no finer level is reachable: a
+    // contact is assumed at its start, or any hit taken as final; both
+    // conservative.
+    LeafResult r;
+    if (e > delta_) {
+      r.hit = r.finest = true;
+      r.fraction = I.ta;
+      r.contact.robot_piece = i;
+      r.contact.world_piece = j;
+    } else {
+      r = leafQuery(i, j, I, ps);
+    }
     if (!r.hit) continue;
-    if (r.finest || any_level) {
+    if (r.finest || any_level || !can_halve) {
       out->collides = true;
       if (r.fraction < best) {
         best = r.fraction;

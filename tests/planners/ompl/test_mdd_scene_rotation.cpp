@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
+#include <string>
 
 #include "mddual/generators.h"
 #include "mddual/planning/mdd_scene.h"
@@ -238,6 +240,76 @@ TEST(ChordSweep, EdgeTouchedOnlyByTheArcsBulgeCollides) {
       EXPECT_GT(contact.fraction, sign > 0 ? 0.35 : 0.45) << what;
     }
   }
+}
+
+// Rotating edges whose growth cannot shrink below a floor: the search must
+// end (before the fix, each of these halved intervals until memory ran out)
+// and stay sound. A turn about z keeps the robot's height, so an obstacle
+// above it by a gap is never touched; one overlapping it always is.
+EdgeMotion turnAboutZ(double from, double angle) {
+  EdgeMotion m;
+  m.q_start = Eigen::Quaterniond(Eigen::AngleAxisd(from, Eigen::Vector3d::UnitZ()));
+  m.R_start = m.q_start.toRotationMatrix();
+  m.axis_R = Eigen::Vector3d::UnitZ();
+  m.angle = angle;
+  m.X_end = m.pose(1.0);
+  return m;
+}
+
+/// A slab of half height 0.5 whose underside is at height `underside`,
+/// above the robot's pieces near (1, 0, 0).
+std::shared_ptr<scene::World> slabAt(double underside) {
+  const Eigen::Isometry3d X_WO(Eigen::Translation3d(1.0, 0.0, underside + 0.5));
+  return std::make_shared<scene::World>(
+      std::vector<scene::Piece>{scene::boxPiece(Eigen::Vector3d::Constant(1.0), X_WO, "slab")}, "world");
+}
+
+/// Bounded search (a count, not a time: generous against the few dozen
+/// triples these edges take), the verdict sound against the closed form.
+void expectEndsAndSound(const MddScene& mdd, const EdgeMotion& m, bool touches, const std::string& what) {
+  for (const EdgeQuery q : {EdgeQuery::kValidity, EdgeQuery::kFirstContact, EdgeQuery::kLastValid}) {
+    const EdgeContact c = mdd.checkEdge(m, q);
+    EXPECT_LT(c.sub_edges, 10000) << what << ", query " << static_cast<int>(q);
+    if (touches) {
+      EXPECT_TRUE(c.collides) << what << ", query " << static_cast<int>(q);
+    }
+  }
+}
+
+TEST(RotatingSearchEnds, NodesSmallerThanTheRoundOffGrowthFarFromTheBodyOrigin) {
+  // Four cubes of 1e-9 m at 1 m from the body origin: the growth's round-off
+  // part (1e-8 of that distance) exceeds a tenth of their nodes' radii.
+  std::vector<scene::Piece> tiny;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Isometry3d X_RB(Eigen::Translation3d(1.0 + 2e-9 * i, 0.0, 0.0));
+    tiny.push_back(scene::boxPiece(Eigen::Vector3d::Constant(1e-9), X_RB, "tiny cube " + std::to_string(i)));
+  }
+  const auto robot = std::make_shared<scene::RigidBody>(tiny, "tiny cubes");
+  const EdgeMotion m = turnAboutZ(-0.05, 0.1);
+  // A gap of 5.5e-9 (within the enlargement: free or a false alarm), an
+  // overlap of 1e-10, and a gap of 0.5 (beyond every enlargement: free).
+  expectEndsAndSound(MddScene(robot, slabAt(6e-9)), m, false, "gap 5.5e-9");
+  expectEndsAndSound(MddScene(robot, slabAt(4e-10)), m, true, "overlap 1e-10");
+  const MddScene far(robot, slabAt(0.5));
+  EXPECT_FALSE(far.checkEdge(m, EdgeQuery::kValidity).collides);
+}
+
+TEST(RotatingSearchEnds, FinestEnlargementBelowTheRoundOffGrowth) {
+  // rotation_tolerance at its minimum (1e-6 of the radius) with 8 levels:
+  // the finest enlargement, delta / 256, is below the growth's round-off
+  // part, so that level is out of reach of any interval.
+  const auto robot = std::make_shared<scene::RigidBody>(
+      std::vector<scene::Piece>{scene::boxPiece(Eigen::Vector3d::Constant(0.1),
+                                                Eigen::Isometry3d(Eigen::Translation3d(1.0, 0.0, 0.0)), "cube")},
+      "cube");
+  MddSceneOptions options;
+  options.rotation_tolerance = 1.01e-6 * robot->radius();
+  options.refinement_levels = 8;
+  const EdgeMotion m = turnAboutZ(-0.05, 0.1);
+  expectEndsAndSound(MddScene(robot, slabAt(0.05 + 1e-9), options), m, false, "gap 1e-9");
+  expectEndsAndSound(MddScene(robot, slabAt(0.05 - 1e-9), options), m, true, "overlap 1e-9");
+  const MddScene far(robot, slabAt(0.5), options);
+  EXPECT_FALSE(far.checkEdge(m, EdgeQuery::kValidity).collides);
 }
 
 }  // namespace

@@ -69,6 +69,13 @@
 //      enlargement covers e, so how soon is a matter of speed). A contact
 //      at the finest level at distance d along v: the edge collides, with a
 //      first contact no earlier than ta + (tb - ta) d / |v| (ta when v = 0).
+//      Termination: time is split (at nodes, by the growth that halving
+//      shrinks, not its round-off part below) only while the interval still
+//      halves; a level whose finer neighbour's enlargement is not above twice
+//      the round-off part counts as the finest (that neighbour is out of
+//      reach), and a leaf pair on an interval that no longer halves is taken
+//      as a contact at its start when e > delta: conservative verdicts, so
+//      the argument below is unchanged.
 //      Every (robot piece, world piece, time) is covered by the root triple
 //      (one per world tree once the world has changed: see below),
 //      a split replaces a triple by triples that cover it, and a triple is

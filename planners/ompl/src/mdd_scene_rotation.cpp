@@ -399,9 +399,9 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       // Split the interval when its growth is not small against the nodes
       // that have children; otherwise the larger of them. The growth
       // compared is the part that halving the interval shrinks (ps.across,
-      // not e: e's round-off part ps.any stays, and nodes smaller than 10^7
-      // times it, far from the body origin, had their interval halved
-      // without end; pinned in test_mdd_scene_rotation.cpp).
+      // not e: e's round-off part ps.any stays, and nodes under ten times
+      // it, 1e-7 of their distance from the body origin, had their interval
+      // halved without end; pinned in test_mdd_scene_rotation.cpp).
       const double rn = N.isLeaf() ? -1.0 : N.radius;
       const double rm = M.isLeaf() ? -1.0 : M.radius;
       // Split the interval when e is large against both nodes; keep it
@@ -415,8 +415,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       // RRT-Connect checks (callgrind, mddual_bench_replay).
       const double r = std::max(rn, rm);
       const double growth = ps.across;
-      const bool in_band = can_halve && growth > kTimeSplitNever * r;
-      bool split_time = can_halve && growth > kTimeSplitAlways * r;
+      // Not below the round-off part: halving would barely shrink e.
+      const bool halving_helps = can_halve && growth > ps.any;
+      const bool in_band = halving_helps && growth > kTimeSplitNever * r;
+      bool split_time = halving_helps && growth > kTimeSplitAlways * r;
       if (!split_time && in_band && t.ungrown != Ungrown::kUnknown) {
         split_time = t.ungrown == Ungrown::kApart;
       } else if (!split_time && in_band) {

@@ -264,12 +264,20 @@ std::shared_ptr<scene::World> slabAt(double underside) {
       std::vector<scene::Piece>{scene::boxPiece(Eigen::Vector3d::Constant(1.0), X_WO, "slab")}, "world");
 }
 
-/// Bounded search (a count, not a time: generous against the few dozen
-/// triples these edges take), the verdict sound against the closed form.
+/// Bounded search (a count, not a time: 23 to 63 triples per query here;
+/// with the node split on the whole growth, 101 to 204 in the first test,
+/// and without the out-of-reach level rule, 107 to 2,149 in the second,
+/// before their intervals stopped halving; with neither guard, no end), the
+/// verdict sound against the closed form.
 void expectEndsAndSound(const MddScene& mdd, const EdgeMotion& m, bool touches, const std::string& what) {
   for (const EdgeQuery q : {EdgeQuery::kValidity, EdgeQuery::kFirstContact, EdgeQuery::kLastValid}) {
     const EdgeContact c = mdd.checkEdge(m, q);
-    EXPECT_LT(c.sub_edges, 10000) << what << ", query " << static_cast<int>(q);
+    EXPECT_LT(c.sub_edges, 80) << what << ", query " << static_cast<int>(q);
+    // The search runs (the validity check of a colliding edge may end at a
+    // probe state instead).
+    if (!touches || q != EdgeQuery::kValidity) {
+      EXPECT_GT(c.sub_edges, 0) << what << ", query " << static_cast<int>(q);
+    }
     if (touches) {
       EXPECT_TRUE(c.collides) << what << ", query " << static_cast<int>(q);
     }

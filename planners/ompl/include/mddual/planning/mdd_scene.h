@@ -69,13 +69,16 @@
 //      enlargement covers e, so how soon is a matter of speed). A contact
 //      at the finest level at distance d along v: the edge collides, with a
 //      first contact no earlier than ta + (tb - ta) d / |v| (ta when v = 0).
-//      Termination: time is split (at nodes, by the growth that halving
-//      shrinks, not its round-off part below) only while the interval still
-//      halves; a level whose finer neighbour's enlargement is not above twice
-//      the round-off part counts as the finest (that neighbour is out of
-//      reach), and a leaf pair on an interval that no longer halves is taken
-//      as a contact at its start when e > delta: conservative verdicts, so
-//      the argument below is unchanged.
+//      Termination: at nodes, time is split only while the interval still
+//      halves and the growth that halving shrinks (the arc or chord part,
+//      not the round-off part below) exceeds that round-off part; a level
+//      whose finer neighbour's enlargement is not above twice the round-off
+//      part counts as the finest (that neighbour is out of reach); on an
+//      interval that no longer halves, a leaf pair with e > delta is taken as
+//      a contact at its start and any leaf hit as final, and validity's
+//      depth-first refinement declares the edge colliding. All of these are
+//      "collides" verdicts or lower bounds, so the argument below is
+//      unchanged; only the false-alarm margin widens where they apply.
 //      Every (robot piece, world piece, time) is covered by the root triple
 //      (one per world tree once the world has changed: see below),
 //      a split replaces a triple by triples that cover it, and a triple is
@@ -109,7 +112,9 @@
 //    quaternion slerp (states stored with norms within 1e-9 of 1: a small
 //    rotation about any axis; the box grows by that part along each of its
 //    axes). The enlargement at the leaves is at least delta /
-//    2^refinement_levels, which keeps false alarms to clearances below it.
+//    2^refinement_levels, which keeps false alarms to clearances below it
+//    (below 4e-8 of the robot radius instead where that is larger: the
+//    termination rules above).
 //    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
 //    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
 //    which the swept volumes meet; at the true first contact t* of a pair in
@@ -198,7 +203,9 @@ struct MddSceneOptions {
   /// 1e6 * radius (larger enlargements only waste queries).
   double rotation_tolerance = 0.0;
   /// Halvings of delta tried on a pair that fails on its interval before the
-  /// edge is declared invalid (0 to 8).
+  /// edge is declared invalid (0 to 8); levels whose enlargement is not above
+  /// twice the slerp round-off growth (2e-8 of the robot radius at most) are
+  /// not tried.
   int refinement_levels = 3;
 };
 

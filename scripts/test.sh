@@ -11,7 +11,18 @@ cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
 
 jobs="${MDDUAL_JOBS:-$(nproc)}"
-echo "== release build and all tests"
+# Each phase prints its wall time when the next begins (the suite's budget is
+# 20 minutes with the builds; the README's test-time paragraph quotes them).
+phase_name=""
+phase_start=$SECONDS
+phase() {
+  [ -n "$phase_name" ] && echo "-- $phase_name: $((SECONDS - phase_start)) s"
+  phase_name="$1"
+  phase_start=$SECONDS
+  [ -n "$1" ] && echo "== $1"
+  return 0
+}
+phase "release build and all tests"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure -j "$jobs"
@@ -20,7 +31,7 @@ ctest --test-dir build/release --output-on-failure -j "$jobs"
 source scripts/instrumented-flags.sh
 san_flags="$instrumented_flags"
 
-echo "== core tests under address + undefined sanitizers"
+phase "core tests under address + undefined sanitizers"
 # Core only: the planning layer is not needed for the core tests (its
 # concurrency test has its own ThreadSanitizer build below).
 cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
@@ -31,16 +42,17 @@ cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build/sanitize -L core --output-on-failure -j "$jobs"
 
-echo "== the OMPL layer's concurrency test under ThreadSanitizer"
+phase "the OMPL layer's concurrency test under ThreadSanitizer"
 cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
   -DMDDUAL_SANITIZE=thread \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/tsan -j "$jobs" --target test_planning_threads
 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/tsan -L tsan --output-on-failure
 
-echo "== fuzzing: libFuzzer targets under address + undefined sanitizers (scripts/fuzz.sh)"
+phase "fuzzing: libFuzzer targets under address + undefined sanitizers (scripts/fuzz.sh)"
 ./scripts/fuzz.sh
 
-echo "== format"
+phase "format"
 ./scripts/check-format.sh
-echo "== all tests passed"
+phase ""
+echo "== all tests passed in $SECONDS s"

@@ -14,7 +14,8 @@
 // bounding spheres are farther apart than our answer plus the tolerance are
 // skipped: they cannot be nearer than our answer, so the skip cannot hide an
 // answer that is too large, and an answer that is too small leaves the
-// oracle's minimum above it (a failure too).
+// oracle's minimum above it (a failure too); the same for the pairs whose
+// bounding boxes are that far apart.
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/narrowphase/distance.h>
 #include <gtest/gtest.h>
@@ -46,17 +47,22 @@ class FclPieces {
   explicit FclPieces(const MddScene& scene) : scene_(scene) {
     for (const auto& p : scene.robot().pieces()) robot_.push_back(toFclConvex(p.polytope));
   }
-  /// Smallest FCL distance over the pairs whose sphere gap is below `limit`
-  /// (+infinity if none); `pairs` counts the FCL calls.
+  /// Smallest FCL distance over the pairs whose sphere gap and box gap are
+  /// both below `limit` (+infinity if none); `pairs` counts the FCL calls.
   double distance(const Eigen::Isometry3d& X_WR, double limit, int* pairs) {
     double best = std::numeric_limits<double>::infinity();
     const auto& robot = scene_.robot().pieces();
     const auto& world = scene_.world().pieces();
     for (std::size_t i = 0; i < robot.size(); ++i) {
       const Eigen::Vector3d c_W = X_WR * robot[i].centre;
+      const Eigen::AlignedBox3d box_W = scene::transformedBox(robot[i].box, X_WR);
       for (std::size_t j = 0; j < world.size(); ++j) {
         const double gap = (c_W - world[j].centre).norm() - robot[i].radius - world[j].radius;
         if (gap > limit) continue;
+        // The boxes' gap bounds the pair's distance from below too, and is far
+        // tighter for the large flat walls of the trap, whose spheres are wide.
+        const Eigen::Vector3d apart = (world[j].box.min() - box_W.max()).cwiseMax(box_W.min() - world[j].box.max());
+        if (apart.cwiseMax(0.0).norm() > limit) continue;
         const fcl::Transform3<double> X_a = X_WR;
         const fcl::Transform3<double> X_b = fcl::Transform3<double>::Identity();
         for (const fcl::GJKSolverType solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
@@ -84,14 +90,19 @@ class FclPieces {
 };
 
 /// Minus the largest penetration depth over the (robot piece, world piece)
-/// pairs whose boxes meet, by the brute force (0 if none penetrates).
+/// pairs whose boxes and bounding spheres meet, by the brute force (0 if none
+/// penetrates).
 double bruteDeepest(const MddScene& scene, const Eigen::Isometry3d& X_WR) {
   double best = 0.0;
   std::vector<int> candidates;
   for (const scene::Piece& piece : scene.robot().pieces()) {
+    const Eigen::Vector3d c_W = X_WR * piece.centre;
     candidates.clear();
     scene.world().candidates(scene::transformedBox(piece.box, X_WR), &candidates);
     for (int j : candidates) {
+      // Bounding spheres apart: the pair does not penetrate (depth 0).
+      const scene::Piece& obstacle = scene.world().pieces()[static_cast<std::size_t>(j)];
+      if ((c_W - obstacle.centre).norm() > piece.radius + obstacle.radius) continue;
       PenetrationInput in;
       in.a = &piece.polytope;
       in.X_WA = X_WR;

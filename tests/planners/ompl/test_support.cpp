@@ -311,13 +311,22 @@ double distanceToTouching(const MddScene& scene, const Eigen::Isometry3d& X_WR, 
   double best = kInf;
   std::vector<int> candidates;
   for (const scene::Piece& piece : scene.robot().pieces()) {
-    Eigen::AlignedBox3d box = scene::transformedBox(piece.box, X_WR);
+    const Eigen::AlignedBox3d box_W = scene::transformedBox(piece.box, X_WR);
+    const Eigen::Vector3d c_W = X_WR * piece.centre;
+    Eigen::AlignedBox3d box = box_W;
     box.min().array() -= margin;
     box.max().array() += margin;
     candidates.clear();
     scene.world().candidates(box, &candidates);
     for (int j : candidates) {
       const scene::Piece& obstacle = scene.world().pieces()[static_cast<std::size_t>(j)];
+      // The spheres' and the boxes' gaps bound a separated pair's distance
+      // from below: a pair either leaves farther than `margin` apart is not
+      // built (the candidates' box test grows the box per axis, which keeps
+      // pairs up to sqrt(3) margin apart across its corners).
+      const double sphere_gap = (c_W - obstacle.centre).norm() - piece.radius - obstacle.radius;
+      const Eigen::Vector3d apart = (obstacle.box.min() - box_W.max()).cwiseMax(box_W.min() - obstacle.box.max());
+      if (sphere_gap > margin || apart.cwiseMax(0.0).norm() > margin) continue;
       const MinkowskiDifference m =
           MinkowskiDifference::build(obstacle.polytope, Eigen::Isometry3d::Identity(), piece.polytope, X_WR);
       for (int f = 0; f < m.polytope.numFaces(); ++f) best = std::min(best, originToFace(m.polytope, f));

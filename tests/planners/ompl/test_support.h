@@ -106,8 +106,10 @@ void randomEdgeEnd(const PlanningSpace& space, const ompl::base::State* s1, doub
                    double max_angle, Rng& rng, ompl::base::State* s2);
 
 /// Smallest |signed Euclidean distance| between the robot at X_WR and a world
-/// piece, over the pairs whose boxes come within `margin`, computed on the
-/// brute-force Minkowski difference (independent of MDD-DUAL and of FCL).
+/// piece, over the pairs whose boxes and bounding spheres come within
+/// `margin`, computed on the brute-force Minkowski difference (independent of
+/// MDD-DUAL and of FCL): exact whenever some pair is within `margin`, else
+/// above `margin` (+infinity when no pair is left).
 double distanceToTouching(const MddScene& scene, const Eigen::Isometry3d& X_WR, double margin);
 /// The tolerance for "within 1e-9 of touching" at X_WR: 1e-9 of the pair's
 /// length scale (robot radius + |position| + 1).

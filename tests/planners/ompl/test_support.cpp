@@ -321,8 +321,8 @@ double distanceToTouching(const MddScene& scene, const Eigen::Isometry3d& X_WR, 
     for (int j : candidates) {
       const scene::Piece& obstacle = scene.world().pieces()[static_cast<std::size_t>(j)];
       // The spheres' and the boxes' gaps bound a separated pair's distance
-      // from below: a pair either leaves farther than `margin` apart is not
-      // built (the candidates' box test grows the box per axis, which keeps
+      // from below: a pair whose sphere gap or box gap exceeds `margin` is
+      // skipped (the candidates' box test grows the box per axis, which keeps
       // pairs up to sqrt(3) margin apart across its corners).
       const double sphere_gap = (c_W - obstacle.centre).norm() - piece.radius - obstacle.radius;
       const Eigen::Vector3d apart = (obstacle.box.min() - box_W.max()).cwiseMax(box_W.min() - obstacle.box.max());

@@ -61,8 +61,7 @@ class FclPieces {
         if (gap > limit) continue;
         // The boxes' gap bounds the pair's distance from below too, and is far
         // tighter for the large flat walls of the trap, whose spheres are wide.
-        const Eigen::Vector3d apart = (world[j].box.min() - box_W.max()).cwiseMax(box_W.min() - world[j].box.max());
-        if (apart.cwiseMax(0.0).norm() > limit) continue;
+        if (box_W.exteriorDistance(world[j].box) > limit) continue;
         const fcl::Transform3<double> X_a = X_WR;
         const fcl::Transform3<double> X_b = fcl::Transform3<double>::Identity();
         for (const fcl::GJKSolverType solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {

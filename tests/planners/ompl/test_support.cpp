@@ -325,8 +325,7 @@ double distanceToTouching(const MddScene& scene, const Eigen::Isometry3d& X_WR, 
       // skipped (the candidates' box test grows the box per axis, which keeps
       // pairs up to sqrt(3) margin apart across its corners).
       const double sphere_gap = (c_W - obstacle.centre).norm() - piece.radius - obstacle.radius;
-      const Eigen::Vector3d apart = (obstacle.box.min() - box_W.max()).cwiseMax(box_W.min() - obstacle.box.max());
-      if (sphere_gap > margin || apart.cwiseMax(0.0).norm() > margin) continue;
+      if (sphere_gap > margin || box_W.exteriorDistance(obstacle.box) > margin) continue;
       const MinkowskiDifference m =
           MinkowskiDifference::build(obstacle.polytope, Eigen::Isometry3d::Identity(), piece.polytope, X_WR);
       for (int f = 0; f < m.polytope.numFaces(); ++f) best = std::min(best, originToFace(m.polytope, f));

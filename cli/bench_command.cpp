@@ -72,11 +72,12 @@ struct BenchFlags {
   std::string seed = "1";
   std::string report;
   std::string report_timeout;
+  std::string last_valid_level;
 };
 
 // ---- Small parsers (one clear line per error) --------------------------------------
 
-long parsePositiveInt(const std::string& flag, const std::string& text) {
+long parseIntInRange(const std::string& flag, const std::string& text, long lo, long hi) {
   std::size_t used = 0;
   long v = 0;
   try {
@@ -84,10 +85,15 @@ long parsePositiveInt(const std::string& flag, const std::string& text) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != text.size() || text.empty() || v < 1 || v > 1000000000L) {
-    throw FatalError(flag + ": '" + clipForMessage(text) + "' is not an integer in [1, 1000000000]");
+  if (used != text.size() || text.empty() || v < lo || v > hi) {
+    throw FatalError(flag + ": '" + clipForMessage(text) + "' is not an integer in [" + std::to_string(lo) + ", " +
+                     std::to_string(hi) + "]");
   }
   return v;
+}
+
+long parsePositiveInt(const std::string& flag, const std::string& text) {
+  return parseIntInRange(flag, text, 1, 1000000000L);
 }
 
 double parsePositiveReal(const std::string& flag, const std::string& text) {
@@ -508,6 +514,10 @@ void runBenchCommand(const BenchFlags& f) {
   if (!f.planners.empty()) options.planners = splitList("--planners", f.planners);
   if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
   if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
+  if (!f.last_valid_level.empty()) {
+    options.setup.mdd.last_valid_level =
+        static_cast<int>(parseIntInRange("--last-valid-level", f.last_valid_level, 0, 8));
+  }
   const long seed = parsePositiveInt("--seed", f.seed);
   const double timeout = reportTimeout("--report-timeout", f.report_timeout);
 
@@ -630,6 +640,11 @@ void registerBenchCommand(CLI::App& app) {
              "OMPL's random seed (default 1; shard I of N: a splitmix64 hash of K, I and N)", "K");
   textOption(sub, "--report", &flags->report, "only build the database and report from the logs in DIR", "DIR");
   textOption(sub, "--report-timeout", &flags->report_timeout, reportTimeoutHelp(), "S");
+  textOption(sub, "--last-valid-level", &flags->last_valid_level,
+             "mdd: the coarsest enlargement level whose contact may end a rotating edge's lastValid search, 0 "
+             "(fastest, keeps least of an invalid edge) to 8 (the finest level; default " +
+                 std::to_string(mp::kDefaultLastValidLevel) + ", MddSceneOptions::last_valid_level)",
+             "K");
   sub->callback([flags] { runBenchCommand(*flags); });
 
   auto dir = std::make_shared<std::string>();

@@ -197,6 +197,11 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
     throw InvalidInputError("MddScene: refinement_levels " + std::to_string(options.refinement_levels) +
                             " is outside [0, 8]");
   }
+  if (options.last_valid_level < 0 || options.last_valid_level > kMaxRefinementLevels) {
+    throw InvalidInputError("MddScene: last_valid_level " + std::to_string(options.last_valid_level) +
+                            " is outside [0, 8]");
+  }
+  last_valid_level_ = std::min(options.last_valid_level, options.refinement_levels);
   const std::size_t n = robot_->pieces().size();
   for (int level = 0; level <= options.refinement_levels; ++level) {
     EnlargedLevel e;

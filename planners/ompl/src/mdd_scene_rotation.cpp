@@ -146,9 +146,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   const bool first_contact = query != EdgeQuery::kValidity;
   // kLastValid: a leaf contact at any enlargement level is a lower bound of
   // its pair's first contact (the enlarged sweep holds the true motion), so
-  // it may end the search like a finest-level one (the edge is known to
-  // collide: the verdict does not rest on it).
-  const bool any_level = query == EdgeQuery::kLastValid;
+  // one at level last_valid_level_ or finer may end the search like a
+  // finest-level one (the edge is known to collide: the verdict does not
+  // rest on it); a coarser one is refined, as for kFirstContact.
+  const bool last_valid = query == EdgeQuery::kLastValid;
   if (world_tree_.empty() && overflow_tree_.empty()) return;
   const std::vector<scene::Piece>& world = world_->pieces();
   // World nodes of both trees, encoded as in Triple::world.
@@ -239,7 +240,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     *until = I.ta + (I.tb - I.ta) * (hi / length);
     return I.ta + (I.tb - I.ta) * (lo / length);
   };
-  double best = kInf;  // smallest finest-level contact fraction found (kLastValid: any level)
+  double best = kInf;  // smallest finest-level contact fraction found (kLastValid: LeafResult::bounds)
   PieceContact best_contact;
   const auto push = [&](int rn, int wn, int iv) {
     if (worldNode(wn).isLeaf() && worldLeaf(wn) < 0) return;  // the piece is not in the world
@@ -267,6 +268,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   struct LeafResult {
     bool hit = false;
     bool finest = false;
+    bool bounds = false;    ///< a contact that may end a kLastValid search (its level is fine enough)
     double fraction = 0.0;  ///< lower bound of the pair's first contact on I (when hit)
     PieceContact contact;
   };
@@ -285,6 +287,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // intervals of a pair closer than that without end: pinned in
     // test_mdd_scene_rotation.cpp.)
     out_leaf.finest = level == finest || delta_ / std::ldexp(1.0, level + 1) <= 2.0 * ps.any;
+    out_leaf.bounds = out_leaf.finest || (last_valid && level >= last_valid_level_);
     out_leaf.fraction = I.ta;
     out_leaf.contact.robot_piece = i;
     out_leaf.contact.world_piece = j;
@@ -299,7 +302,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       in.X_WB = ps.X_WR_start;
       in.s_W = ps.v_W / length;
       in.max_distance = length;
-      in.exact_toi = first_contact && (out_leaf.finest || any_level);  // otherwise: whether to refine
+      in.exact_toi = first_contact && out_leaf.bounds;  // otherwise: whether to refine
       const ToiResult r = toi(in, warm);
       if (r.status == ToiStatus::kNever || !(r.toi <= length)) return out_leaf;
       if (r.status == ToiStatus::kHit) {
@@ -375,7 +378,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   // First contact: a queue by bound (see the header). Validity only: any
   // order is sound; a stack (depth first) is cheaper and reaches leaves soon.
   while (!heap.empty()) {
-    if (any_level && heap.front().bound >= best - fraction_tolerance) {
+    if (last_valid && heap.front().bound >= best - fraction_tolerance) {
       // Every contact left in the queue is no earlier than the queue's
       // smallest bound, within the tolerance of the best one found.
       if (heap.front().bound < best) {
@@ -460,7 +463,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // conservative.
     LeafResult r;
     if (e > delta_) {
-      r.hit = r.finest = true;
+      r.hit = r.finest = r.bounds = true;
       r.fraction = I.ta;
       r.contact.robot_piece = i;
       r.contact.world_piece = j;
@@ -468,7 +471,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       r = leafQuery(i, j, I, ps);
     }
     if (!r.hit) continue;
-    if (r.finest || any_level || !can_halve) {
+    if (r.bounds || !can_halve) {
       out->collides = true;
       if (r.fraction < best) {
         best = r.fraction;

@@ -82,6 +82,11 @@ TEST(Errors, SceneAndCheckers) {
   bad.rotation_tolerance = 0.0;
   bad.refinement_levels = 9;
   expectError([&] { MddScene(scene.robot, scene.world, bad); }, "refinement_levels");
+  bad.refinement_levels = 3;
+  bad.last_valid_level = -1;
+  expectError([&] { MddScene(scene.robot, scene.world, bad); }, "last_valid_level -1 is outside [0, 8]");
+  bad.last_valid_level = 9;
+  expectError([&] { MddScene(scene.robot, scene.world, bad); }, "last_valid_level 9 is outside [0, 8]");
   expectError([&] { FclScene(nullptr, scene.world); }, "robot is null");
   expectError([&] { FclScene(scene.robot, nullptr); }, "world is null");
 

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <vector>
 
 #include "mddual/generators.h"
 #include "test_support.h"
@@ -248,6 +250,59 @@ TEST(MddSceneRotation, LastValidQueryKeepsTheVerdictAndBoundsTheFirstContactWith
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, -0.1), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, std::nan("")), InvalidInputError);
   EXPECT_THROW(mdd.checkEdge(m, EdgeQuery::kLastValid, 1.5), InvalidInputError);
+}
+
+TEST(MddSceneRotation, LastValidLevelTradesQueriesForATighterBound) {
+  // MddSceneOptions::last_valid_level on the trap's colliding rotating
+  // edges, no tolerance: every level's bound is no later than the first
+  // colliding state found by sampling; the finest level's is the
+  // first-contact search's answer; the default level's is on average later
+  // (keeps more of the edge) than level 0's, for more pair queries.
+  const examples::ExampleScene& scene = testing::allScenes()[8];
+  ASSERT_EQ(scene.name, "trap");
+  MddSceneOptions options;
+  std::vector<std::unique_ptr<MddScene>> scenes;  // levels 0, the default, the finest (and beyond it)
+  for (const int level : {0, kDefaultLastValidLevel, options.refinement_levels, 8}) {
+    options.last_valid_level = level;
+    scenes.push_back(std::make_unique<MddScene>(scene.robot, scene.world, options));
+  }
+  ASSERT_LT(0, kDefaultLastValidLevel);
+  ASSERT_LT(kDefaultLastValidLevel, options.refinement_levels);
+  testing::Rng rng(testing::seed() * 107);
+  int edges = 0, colliding = 0;
+  std::array<double, 4> sum_fraction{};
+  std::array<long, 4> queries{};
+  while (edges < 150 * testing::scale()) {
+    const EdgeMotion m = randomRotatingEdge(scene, *scenes[0], rng);
+    ++edges;
+    if (!scenes[0]->checkEdge(m, EdgeQuery::kValidity).collides) continue;
+    ++colliding;
+    int first_colliding = 1000;
+    for (int k = 0; k <= 1000; ++k) {
+      if (scenes[0]->collides(m.pose(k / 1000.0))) {
+        first_colliding = k;
+        break;
+      }
+    }
+    const double exact_bound = scenes[0]->checkEdge(m, EdgeQuery::kFirstContact).fraction;
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+      const EdgeContact e = scenes[s]->checkEdge(m, EdgeQuery::kLastValid);
+      ASSERT_TRUE(e.collides) << "edge " << edges << ", scene " << s;
+      EXPECT_LE(e.fraction, first_colliding / 1000.0) << "edge " << edges << ", scene " << s;
+      if (s >= 2) {
+        EXPECT_NEAR(e.fraction, exact_bound, 1e-9) << "edge " << edges << ", scene " << s;
+      }
+      sum_fraction[s] += e.fraction;
+      queries[s] += e.pair_queries;
+    }
+  }
+  ASSERT_GT(colliding, edges / 10);
+  std::printf("kLastValid by level (0, %d, %d, 8): mean fraction %.4f %.4f %.4f %.4f, pair queries %ld %ld %ld %ld\n",
+              kDefaultLastValidLevel, options.refinement_levels, sum_fraction[0] / colliding,
+              sum_fraction[1] / colliding, sum_fraction[2] / colliding, sum_fraction[3] / colliding, queries[0],
+              queries[1], queries[2], queries[3]);
+  EXPECT_GT(sum_fraction[1], sum_fraction[0]);
+  EXPECT_GT(queries[1], queries[0]);
 }
 
 TEST(MddSceneRotation, ValidityTestsTheProbeStatesBeforeAnySearch) {

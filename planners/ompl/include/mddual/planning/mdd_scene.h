@@ -131,9 +131,11 @@
 //    lastValid (EdgeQuery::kLastValid): the verdict as in validity only (a
 //    colliding probe state, the end, middle or quarters, settles it
 //    first); on a colliding edge, the first-contact queue with a leaf
-//    contact at ANY level taken as a bound (piece i enlarged at level k
-//    holds the true piece over its interval, so its sweep's contact fraction
-//    is no later than the pair's true first contact), stopped once the queue's smallest bound b is within
+//    contact at level MddSceneOptions::last_valid_level or finer taken as a
+//    bound, like a finest-level one (piece i enlarged at ANY level k holds
+//    the true piece over its interval, so its sweep's contact fraction is no
+//    later than the pair's true first contact; coarser contacts are split
+//    only to make the bound tighter), stopped once the queue's smallest bound b is within
 //    the tolerance of the best contact f found; it returns min(f, b). By the
 //    argument for f above that is no later than t*, and it is at most the
 //    tolerance below what the search run to the end would return (which is
@@ -191,6 +193,18 @@
 
 namespace mddual::planning {
 
+/// MddSceneOptions::last_valid_level's default. `mddual bench CFG --checkers
+/// mdd --planners kpiece --runs 30 --time-limit 10 --seed 1` with levels 0
+/// (any level, the default before), 1, 2 and 3 (the finest), two levels side
+/// by side on the 2-core machine: twistycool solved 4, 17, 14 and 16 of 30
+/// runs, bugtrap 15, 18, 18 and 8, the apartment 19 and 24 with levels 0
+/// and 1 (medians 7.30 s and 6.06 s). Replaying recorded KPIECE checks
+/// (mddual_bench_replay), level 1 against 0 keeps 0.292 of an invalid edge
+/// against 0.269 on twistycool and 0.350 against 0.329 on bugtrap (FCL's
+/// discrete check 0.313 and 0.370) for 1.25x and 1.34x the time per check;
+/// the finest level keeps as much as FCL's check for 2.0x and 1.7x.
+inline constexpr int kDefaultLastValidLevel = 1;
+
 /// Options of an MddScene.
 struct MddSceneOptions {
   /// delta of the rotating-edge scheme (world units): the enlargement of the
@@ -207,6 +221,18 @@ struct MddSceneOptions {
   /// twice the slerp round-off growth (2e-8 of the robot radius at most) are
   /// not tried.
   int refinement_levels = 3;
+  /// lastValid on rotating edges (EdgeQuery::kLastValid): the coarsest
+  /// enlargement level whose leaf contact may end the search as a bound of
+  /// the first contact (0 to 8; a level above refinement_levels means the
+  /// finest). A contact at a coarser level is refined first, as the
+  /// first-contact search refines it. Level k's piece reaches up to 1.73
+  /// delta / 2^k beyond the true one, so its contact can come that much
+  /// motion before the true first contact: a coarser level answers sooner
+  /// and keeps less of an invalid edge. Measured (`mddual bench`, KPIECE,
+  /// which asks for lastValid on every check and drops a partial motion that
+  /// keeps less than 0.2 of its edge; 30 runs of 10 s per level, two levels
+  /// side by side): see kDefaultLastValidLevel.
+  int last_valid_level = kDefaultLastValidLevel;
 };
 
 /// Default delta relative to the robot radius: 2%. A piece at the robot's
@@ -437,6 +463,7 @@ class MddScene {
   std::shared_ptr<const scene::RigidBody> robot_;
   std::shared_ptr<const scene::World> world_;
   double delta_ = 0.0;
+  int last_valid_level_ = kDefaultLastValidLevel;
   std::vector<EnlargedLevel> enlarged_;
   Bvh robot_tree_;                 ///< over robot_->pieces(), frame R
   Bvh world_tree_;                 ///< static: over the world's pieces at the last build, frame W

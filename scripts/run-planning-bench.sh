@@ -24,15 +24,18 @@ cmake --build "$build" -j2 --target mddual_bench_planning mddual_bench_replay
 "$build/benchmarks/planning/mddual_bench_planning" "$@" | tee "$out/bench-planning.md"
 # The README's tables, from a run with the default sizes only.
 if [ $# -eq 0 ]; then
-  python3 "$root/scripts/planning_table.py" --input "$out/bench-planning.md" --readme "$root/README.md"
+  # The build the tables come from, named in their "Made by" lines.
+  build_of="build of $(git -C "$root" rev-parse --short HEAD)$(git -C "$root" diff --quiet HEAD -- ':!*.md' || echo ' with local changes'), $(date +%F)"
+  python3 "$root/scripts/planning_table.py" --input "$out/bench-planning.md" --readme "$root/README.md" \
+    --command "./scripts/run-planning-bench.sh ($build_of)"
   mesh_args=(--states 2000 --edges 200 --passes 1 --cpu --no-ccd)
   configs=()
   for c in bugtrap twistycool cubicles_mesh apartment maze_planar; do configs+=(--config "$root/configs/$c/$c.cfg"); done
   "$build/benchmarks/planning/mddual_bench_planning" "${mesh_args[@]}" "${configs[@]}" | tee "$out/bench-planning-mesh.md"
   python3 "$root/scripts/planning_table.py" --input "$out/bench-planning-mesh.md" --readme "$root/README.md" \
-    --marker planning-mesh --command "./scripts/run-planning-bench.sh (mesh configs: mddual_bench_planning ${mesh_args[*]} --config ...)"
+    --marker planning-mesh --command "./scripts/run-planning-bench.sh (mesh configs: mddual_bench_planning ${mesh_args[*]} --config ...; $build_of)"
   replay_args=(--planner kpiece --planner rrtconnect --planner rrt --seconds 3 --passes 2 --cpu)
   "$build/benchmarks/planning/mddual_bench_replay" "${replay_args[@]}" "${configs[@]}" | tee "$out/bench-replay.md"
   python3 "$root/scripts/replay_table.py" --input "$out/bench-replay.md" --readme "$root/README.md" \
-    --command "./scripts/run-planning-bench.sh (replay: mddual_bench_replay ${replay_args[*]} --config ...)"
+    --command "./scripts/run-planning-bench.sh (replay: mddual_bench_replay ${replay_args[*]} --config ...; $build_of)"
 fi

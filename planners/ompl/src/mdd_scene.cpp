@@ -557,10 +557,10 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
       collides = out.collides;
     }
     if (!collides) return out;
-    // 2. The first-contact bound at any enlargement level; when no enlarged
-    //    piece touched (the verdict was a contact within the finest
-    //    enlargement on triples that the any-level search cleared: a rare
-    //    false alarm, and a second full search), the finest search.
+    // 2. The first-contact bound at enlargement level last_valid_level_ or
+    //    finer; when no enlarged piece touched (the verdict was a contact
+    //    within the finest enlargement on triples that this search cleared:
+    //    a rare false alarm, and a second full search), the finest search.
     EdgeContact bound;
     checkRotating(motion, EdgeQuery::kLastValid, fraction_tolerance, &bound);
     if (!bound.collides) checkRotating(motion, EdgeQuery::kFirstContact, 0.0, &bound);

@@ -515,8 +515,11 @@ void runBenchCommand(const BenchFlags& f) {
   if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
   if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
   if (!f.last_valid_level.empty()) {
+    if (std::find(options.checkers.begin(), options.checkers.end(), mp::CheckerKind::kMdd) == options.checkers.end()) {
+      throw FatalError("--last-valid-level: it sets the mdd checker, which --checkers leaves out");
+    }
     options.setup.mdd.last_valid_level =
-        static_cast<int>(parseIntInRange("--last-valid-level", f.last_valid_level, 0, 8));
+        static_cast<int>(parseIntInRange("--last-valid-level", f.last_valid_level, 0, mp::kMaxRefinementLevels));
   }
   const long seed = parsePositiveInt("--seed", f.seed);
   const double timeout = reportTimeout("--report-timeout", f.report_timeout);
@@ -641,8 +644,9 @@ void registerBenchCommand(CLI::App& app) {
   textOption(sub, "--report", &flags->report, "only build the database and report from the logs in DIR", "DIR");
   textOption(sub, "--report-timeout", &flags->report_timeout, reportTimeoutHelp(), "S");
   textOption(sub, "--last-valid-level", &flags->last_valid_level,
-             "mdd: the coarsest enlargement level whose contact may end a rotating edge's lastValid search, 0 "
-             "(fastest, keeps least of an invalid edge) to 8 (the finest level; default " +
+             "mdd checker: the coarsest enlargement level whose contact may end a rotating edge's lastValid search, "
+             "0 (any level: fastest, keeps least of an invalid edge) to 8; levels from the scene's refinement levels "
+             "(3) up mean the finest (default " +
                  std::to_string(mp::kDefaultLastValidLevel) + ", MddSceneOptions::last_valid_level)",
              "K");
   sub->callback([flags] { runBenchCommand(*flags); });

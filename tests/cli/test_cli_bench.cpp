@@ -224,6 +224,8 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
       {{cfg, "--last-valid-level", "9"}, "--last-valid-level: '9' is not an integer in [0, 8]"},
       {{cfg, "--last-valid-level", "-1"}, "--last-valid-level: '-1' is not an integer in [0, 8]"},
       {{cfg, "--last-valid-level", "1.5"}, "--last-valid-level: '1.5' is not an integer in [0, 8]"},
+      {{cfg, "--checkers", "fcl", "--last-valid-level", "2"},
+       "--last-valid-level: it sets the mdd checker, which --checkers leaves out"},
       {{cfg, "--planners", "prn"}, "unknown planner 'prn': not in tiny.cfg (its planners: rrtconnect, mdd_rrtconnect)"},
       {{cfg, "--shard", "2/3", "--output", out}, "--shard 2/3: only 2 runs per planner, so at most 2 shards"},
       {{}, "no config file given"},

@@ -41,7 +41,6 @@ constexpr double kMinRotationToleranceRel = 1e-6;
 /// Largest delta relative to the robot radius: beyond, the enlarged pieces
 /// only waste queries (and at 1e60 left the supported coordinate range).
 constexpr double kMaxRotationToleranceRel = 1e6;
-constexpr int kMaxRefinementLevels = 8;
 
 /// Vertices of an icosahedron with edge length 2 and its inradius.
 const std::vector<Eigen::Vector3d>& icosahedron() {
@@ -195,11 +194,11 @@ MddScene::MddScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_pt
   }
   if (options.refinement_levels < 0 || options.refinement_levels > kMaxRefinementLevels) {
     throw InvalidInputError("MddScene: refinement_levels " + std::to_string(options.refinement_levels) +
-                            " is outside [0, 8]");
+                            " is outside [0, " + std::to_string(kMaxRefinementLevels) + "]");
   }
   if (options.last_valid_level < 0 || options.last_valid_level > kMaxRefinementLevels) {
     throw InvalidInputError("MddScene: last_valid_level " + std::to_string(options.last_valid_level) +
-                            " is outside [0, 8]");
+                            " is outside [0, " + std::to_string(kMaxRefinementLevels) + "]");
   }
   last_valid_level_ = std::min(options.last_valid_level, options.refinement_levels);
   const std::size_t n = robot_->pieces().size();

@@ -302,10 +302,14 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       in.X_WB = ps.X_WR_start;
       in.s_W = ps.v_W / length;
       in.max_distance = length;
-      in.exact_toi = first_contact && out_leaf.bounds;  // otherwise: whether to refine
+      // Otherwise only whether to refine is asked; an interval that no
+      // longer halves cannot be refined, so its hit may become the bound.
+      in.exact_toi = first_contact && (out_leaf.bounds || !halvable(I.ta, I.tb));
       const ToiResult r = toi(in, warm);
       if (r.status == ToiStatus::kNever || !(r.toi <= length)) return out_leaf;
-      if (r.status == ToiStatus::kHit) {
+      // An early (inexact) hit's toi is an upper bound of the contact, not a
+      // lower one: a first-contact search keeps I.ta for it.
+      if (r.status == ToiStatus::kHit && (r.toi_exact || !first_contact)) {
         out_leaf.fraction = I.ta + (I.tb - I.ta) * std::min(1.0, r.toi / length);
         out_leaf.contact.p_WC = r.contact.point_W;
         out_leaf.contact.n_W = r.contact.normal_W;

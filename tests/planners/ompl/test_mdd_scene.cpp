@@ -277,20 +277,23 @@ TEST(MddSceneRotation, LastValidLevelTradesQueriesForATighterBound) {
     ++edges;
     if (!scenes[0]->checkEdge(m, EdgeQuery::kValidity).collides) continue;
     ++colliding;
-    int first_colliding = 1000;
+    int first_colliding = 1000;  // no sample collides: the bound is only checked against the edge's end
     for (int k = 0; k <= 1000; ++k) {
       if (scenes[0]->collides(m.pose(k / 1000.0))) {
         first_colliding = k;
         break;
       }
     }
-    const double exact_bound = scenes[0]->checkEdge(m, EdgeQuery::kFirstContact).fraction;
+    // kFirstContact finds no contact only on a rare false alarm of the
+    // validity search (the finest-level queries clear the edge): no bound to
+    // compare with then.
+    const EdgeContact first = scenes[0]->checkEdge(m, EdgeQuery::kFirstContact);
     for (std::size_t s = 0; s < scenes.size(); ++s) {
       const EdgeContact e = scenes[s]->checkEdge(m, EdgeQuery::kLastValid);
       ASSERT_TRUE(e.collides) << "edge " << edges << ", scene " << s;
       EXPECT_LE(e.fraction, first_colliding / 1000.0) << "edge " << edges << ", scene " << s;
-      if (s >= 2) {
-        EXPECT_NEAR(e.fraction, exact_bound, 1e-9) << "edge " << edges << ", scene " << s;
+      if (s >= 2 && first.collides) {
+        EXPECT_NEAR(e.fraction, first.fraction, 1e-9) << "edge " << edges << ", scene " << s;
       }
       sum_fraction[s] += e.fraction;
       queries[s] += e.pair_queries;
@@ -301,6 +304,8 @@ TEST(MddSceneRotation, LastValidLevelTradesQueriesForATighterBound) {
               kDefaultLastValidLevel, options.refinement_levels, sum_fraction[0] / colliding,
               sum_fraction[1] / colliding, sum_fraction[2] / colliding, sum_fraction[3] / colliding, queries[0],
               queries[1], queries[2], queries[3]);
+  // Aggregates over the seeded sample (a finer level need not keep more of
+  // every single edge: its intervals differ).
   EXPECT_GT(sum_fraction[1], sum_fraction[0]);
   EXPECT_GT(queries[1], queries[0]);
 }

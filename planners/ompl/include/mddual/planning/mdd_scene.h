@@ -193,6 +193,9 @@
 
 namespace mddual::planning {
 
+/// Largest MddSceneOptions::refinement_levels and last_valid_level.
+inline constexpr int kMaxRefinementLevels = 8;
+
 /// MddSceneOptions::last_valid_level's default. `mddual bench CFG --checkers
 /// mdd --planners kpiece --runs 30 --time-limit 10 --seed 1` with levels 0
 /// (any level, the default before), 1, 2 and 3 (the finest), two levels side
@@ -201,8 +204,9 @@ namespace mddual::planning {
 /// and 1 (medians 7.30 s and 6.06 s). Replaying recorded KPIECE checks
 /// (mddual_bench_replay), level 1 against 0 keeps 0.292 of an invalid edge
 /// against 0.269 on twistycool and 0.350 against 0.329 on bugtrap (FCL's
-/// discrete check 0.313 and 0.370) for 1.25x and 1.34x the time per check;
-/// the finest level keeps as much as FCL's check for 2.0x and 1.7x.
+/// discrete check 0.313 and 0.370) for 1.25x and 1.34x the time per recorded
+/// check (valid and invalid ones); the finest level keeps as much as FCL's
+/// check for 2.0x and 1.7x.
 inline constexpr int kDefaultLastValidLevel = 1;
 
 /// Options of an MddScene.

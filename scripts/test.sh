@@ -31,23 +31,26 @@ ctest --test-dir build/release --output-on-failure -j "$jobs"
 source scripts/instrumented-flags.sh
 san_flags="$instrumented_flags"
 
+# Both sanitizer builds use Clang (as the fuzz targets do): on the 2-core
+# machine it compiled the ASan + UBSan core tests in 24% less CPU time than
+# GCC with the tests as fast, and the TSan test ran in 7.5 s instead of 24 s.
 phase "core tests under address + undefined sanitizers"
 # Core only: the planning layer is not needed for the core tests (its
 # concurrency test has its own ThreadSanitizer build below).
-cmake -S . -B build/sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
+CC=clang CXX=clang++ cmake -S . -B build/clang-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
   -DMDDUAL_SANITIZE=address,undefined \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=OFF -DMDDUAL_BUILD_PYTHON=OFF \
   -DMDDUAL_WARNINGS_AS_ERRORS=ON
-cmake --build build/sanitize -j "$jobs"
+cmake --build build/clang-asan -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build/sanitize -L core --output-on-failure -j "$jobs"
+  ctest --test-dir build/clang-asan -L core --output-on-failure -j "$jobs"
 
 phase "the OMPL layer's concurrency test under ThreadSanitizer"
-cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
+CC=clang CXX=clang++ cmake -S . -B build/clang-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
   -DMDDUAL_SANITIZE=thread \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
-cmake --build build/tsan -j "$jobs" --target test_planning_threads
-TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/tsan -L tsan --output-on-failure
+cmake --build build/clang-tsan -j "$jobs" --target test_planning_threads
+TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 ctest --test-dir build/clang-tsan -L tsan --output-on-failure
 
 phase "fuzzing: libFuzzer targets under address + undefined sanitizers (scripts/fuzz.sh)"
 ./scripts/fuzz.sh

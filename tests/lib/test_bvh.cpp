@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <string>
 #include <utility>
 
 #include "mddual/bvh.h"
@@ -437,42 +438,49 @@ TEST(Bvh, CastStoppedWithinAToleranceBracketsTheBruteForceFirstContact) {
 TEST(Bvh, CastWithAMarginCallsEveryPairItWouldCallWithoutAndMore) {
   // A leaf that reports no contact sees every pair the cast cannot rule out:
   // with a margin, a superset of the pairs seen without one, which include
-  // every pair that intersects at the start.
+  // every pair that intersects at the start. Several poses, so that the guard
+  // below holds whatever order a compiler draws a pose's numbers in.
   Rng rng(7);
   const std::vector<Points> pa = randomPieces(rng, 60, 4.0), pb = randomPieces(rng, 10, 1.0);
   const std::vector<ConvexPolytope> ca = polytopes(pa), cb = polytopes(pb);
   const Bvh a(pa), b(pb);
-  const Eigen::Isometry3d X = randomPose(rng, 2.0);
-  const auto seenWith = [&](double margin) {
-    CastOptions options;
-    options.margin_b = margin;
-    std::set<std::pair<int, int>> seen;
-    const CastHit hit = castFirst(
-        a, b, X, Eigen::Vector3d::UnitX(), 1.0,
-        [&](int i, int j, double) {
-          seen.emplace(i, j);
-          return kInf;
-        },
-        options);
-    EXPECT_EQ(hit.distance, kInf);
-    return seen;
-  };
-  const std::set<std::pair<int, int>> without = seenWith(0.0), with = seenWith(0.5);
-  for (const auto& p : without) EXPECT_EQ(with.count(p), 1u);
-  EXPECT_GT(with.size(), without.size());
-  int intersecting = 0;
-  for (int i = 0; i < a.numPieces(); ++i) {
-    for (int j = 0; j < b.numPieces(); ++j) {
-      IntersectInput in;
-      in.a = &ca[static_cast<std::size_t>(i)];
-      in.b = &cb[static_cast<std::size_t>(j)];
-      in.X_WB = X;
-      if (!intersect(in).intersecting) continue;
-      ++intersecting;
-      EXPECT_EQ(without.count({i, j}), 1u);
+  int intersecting = 0, margin_added = 0;
+  for (int pose = 0; pose < 16; ++pose) {
+    const Eigen::Isometry3d X = randomPose(rng, 2.0);
+    const std::string where = "pose " + std::to_string(pose);
+    const auto seenWith = [&](double margin) {
+      CastOptions options;
+      options.margin_b = margin;
+      std::set<std::pair<int, int>> seen;
+      const CastHit hit = castFirst(
+          a, b, X, Eigen::Vector3d::UnitX(), 1.0,
+          [&](int i, int j, double) {
+            seen.emplace(i, j);
+            return kInf;
+          },
+          options);
+      EXPECT_EQ(hit.distance, kInf) << where;
+      return seen;
+    };
+    const std::set<std::pair<int, int>> without = seenWith(0.0), with = seenWith(0.5);
+    for (const auto& p : without) EXPECT_EQ(with.count(p), 1u) << where;
+    margin_added += with.size() > without.size();
+    for (int i = 0; i < a.numPieces(); ++i) {
+      for (int j = 0; j < b.numPieces(); ++j) {
+        IntersectInput in;
+        in.a = &ca[static_cast<std::size_t>(i)];
+        in.b = &cb[static_cast<std::size_t>(j)];
+        in.X_WB = X;
+        if (!intersect(in).intersecting) continue;
+        ++intersecting;
+        EXPECT_EQ(without.count({i, j}), 1u) << where << ", pair " << i << " " << j;
+      }
     }
   }
-  EXPECT_GT(intersecting, 0);
+  // Not a degenerate sample: pairs that intersect at the start, and poses
+  // where the margin brought in more pairs.
+  EXPECT_GT(intersecting, 4);
+  EXPECT_GT(margin_added, 8);
 }
 
 TEST(Bvh, ObbTestsAgreeWithTheCoreOnTheBoxesAsPolytopes) {

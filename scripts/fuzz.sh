@@ -11,7 +11,7 @@
 # below, about 25 to 60 s each on a 2-core machine); -seed=1 makes a run
 # repeatable. The targets run side by side (MDDUAL_JOBS at a time, default
 # all cores); a crash, a sanitizer report or a wrong answer in one fails the
-# script once all have finished, with the input saved as build/fuzz/crash-*
+# script once all have finished, with the input saved as build/clang-fuzz/crash-*
 # (turn it into a regression test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,12 +23,15 @@ jobs="${MDDUAL_JOBS:-$(nproc)}"
 declare -A pids
 # -O1 and line tables only, as the sanitizer builds of scripts/test.sh.
 source scripts/instrumented-flags.sh
-CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+# Ninja, not Make: it compiles a target's files while the libraries it links
+# are still being built (149 s -> 107 s for this build on the 2-core machine).
+fuzz_dir=build/clang-fuzz
+CC=clang CXX=clang++ cmake -G Ninja -S . -B "$fuzz_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$instrumented_flags" -DMDDUAL_BUILD_FUZZERS=ON \
   -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF >/dev/null
-cmake --build build/fuzz -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl
+cmake --build "$fuzz_dir" -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl
 
-corpus=build/fuzz/corpus
+corpus="$fuzz_dir/corpus"
 rm -rf "$corpus"
 mkdir -p "$corpus"/{polytope,cfg,urdf,mesh,jsonl}
 cp fuzz/seeds/polytope/* "$corpus/polytope/"
@@ -64,24 +67,24 @@ run_target() {
   runs="${MDDUAL_FUZZ_RUNS:-${default_runs[$target]}}"
   echo "== fuzz_$target: $runs executions"
   start=$(date +%s)
-  (cd build/fuzz && ./fuzz/fuzz_$target -seed=1 -runs="$runs" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
+  (cd "$fuzz_dir" && ./fuzz/fuzz_$target -seed=1 -runs="$runs" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
     "corpus/$target" 2>"fuzz_$target.log") || {
-    tail -40 "build/fuzz/fuzz_$target.log"
-    echo "fuzz_$target found a problem (log: build/fuzz/fuzz_$target.log)"
+    tail -40 "$fuzz_dir/fuzz_$target.log"
+    echo "fuzz_$target found a problem (log: $fuzz_dir/fuzz_$target.log)"
     return 1
   }
-  grep -E "^Done [0-9]+ runs" "build/fuzz/fuzz_$target.log" || true
+  grep -E "^Done [0-9]+ runs" "$fuzz_dir/fuzz_$target.log" || true
   echo "fuzz_$target: $runs executions in $(($(date +%s) - start)) s, no finding"
 }
 targets=(mesh polytope jsonl urdf cfg)
 for target in "${targets[@]}"; do
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
-  run_target "$target" >"build/fuzz/fuzz_$target.summary" 2>&1 &
+  run_target "$target" >"$fuzz_dir/fuzz_$target.summary" 2>&1 &
   pids[$target]=$!
 done
 failed=0
 for target in "${targets[@]}"; do
   wait "${pids[$target]}" || failed=1
-  cat "build/fuzz/fuzz_$target.summary"
+  cat "$fuzz_dir/fuzz_$target.summary"
 done
 exit "$failed"

@@ -34,10 +34,12 @@ san_flags="$instrumented_flags"
 # Both sanitizer builds use Clang (as the fuzz targets do): on the 2-core
 # machine it compiled the ASan + UBSan core tests in 24% less CPU time than
 # GCC with the tests as fast, and the TSan test ran in 7.5 s instead of 24 s.
+# And Ninja: it compiles the tests while the library they link is still being
+# built, where Make waits (the fuzz build: 149 s -> 107 s).
 phase "core tests under address + undefined sanitizers"
 # Core only: the planning layer is not needed for the core tests (its
 # concurrency test has its own ThreadSanitizer build below).
-CC=clang CXX=clang++ cmake -S . -B build/clang-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
+CC=clang CXX=clang++ cmake -G Ninja -S . -B build/clang-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
   -DMDDUAL_SANITIZE=address,undefined \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_BUILD_PLANNING=OFF -DMDDUAL_BUILD_PYTHON=OFF \
   -DMDDUAL_WARNINGS_AS_ERRORS=ON
@@ -46,7 +48,7 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   ctest --test-dir build/clang-asan -L core --output-on-failure -j "$jobs"
 
 phase "the OMPL layer's concurrency test under ThreadSanitizer"
-CC=clang CXX=clang++ cmake -S . -B build/clang-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
+CC=clang CXX=clang++ cmake -G Ninja -S . -B build/clang-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$san_flags" \
   -DMDDUAL_SANITIZE=thread \
   -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF -DMDDUAL_WARNINGS_AS_ERRORS=ON
 cmake --build build/clang-tsan -j "$jobs" --target test_planning_threads

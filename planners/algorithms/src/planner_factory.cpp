@@ -255,4 +255,12 @@ std::vector<scene::PlannerSpec> selectPlannerSpecs(const std::vector<scene::Plan
   return out;
 }
 
+double discardedLastValidFraction(const ob::Planner& planner) {
+  // KPIECE1::solve keeps a failed extension only when lastValid.second >
+  // minValidPathFraction_ (OMPL 1.5). Other planners with this parameter
+  // (BKPIECE1, LBKPIECE1, STRIDE) are left out until their use is checked.
+  const auto* kpiece = dynamic_cast<const og::KPIECE1*>(&planner);
+  return kpiece != nullptr ? kpiece->getMinValidPathFraction() : 0.0;
+}
+
 }  // namespace mddual::planning

@@ -277,6 +277,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     // Each planner is metered: the checkers' counters are read when its
     // solve() returns (solve_stats), before OMPL checks the path.
     std::vector<ob::PlannerPtr> planners;
+    std::vector<double> discarded_fraction;  // per spec: discardedLastValidFraction
     std::map<const ob::Planner*, std::size_t> spec_of;
     std::map<std::string, int> seen;
     CheckStats solve_stats;
@@ -285,6 +286,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       const int count = ++seen[p->getName()];
       if (count > 1) p->setName(p->getName() + "_" + std::to_string(count));
       setup.applyPlannerContext(specs[i]);
+      discarded_fraction.push_back(discardedLastValidFraction(*p));
       p = std::make_shared<MeteredPlanner>(p, [&setup, &solve_stats] { solve_stats = setup.stats(); });
       spec_of[p.get()] = i;
       planners.push_back(p);
@@ -309,6 +311,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       try {
         current = spec_of.at(planner.get());
         setup.applyPlannerContext(specs[current]);
+        setup.setDiscardedLastValidFraction(discarded_fraction[current]);
       } catch (...) {
         if (!failure) failure = std::current_exception();
       }

@@ -521,6 +521,10 @@ ob::PlannerPtr ProblemSetup::makePlanner(const scene::PlannerSpec& spec) const {
   return planner;
 }
 
+void ProblemSetup::setDiscardedLastValidFraction(double fraction) {
+  if (mdd_motion_) mdd_motion_->setDiscardedLastValidFraction(fraction);
+}
+
 CheckStats ProblemSetup::stats() const {
   CheckStats s;
   s.state_checks = timer_->state_checks.load(std::memory_order_relaxed);

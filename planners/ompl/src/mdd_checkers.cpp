@@ -145,10 +145,39 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) c
   return valid;
 }
 
+void MddMotionValidator::setDiscardedLastValidFraction(double fraction) {
+  if (!(fraction >= 0.0 && fraction < 1.0)) {
+    throw InvalidInputError("MddMotionValidator: the discarded lastValid fraction must be in [0, 1), got " +
+                            std::to_string(fraction));
+  }
+  discarded_fraction_.store(fraction, std::memory_order_relaxed);
+}
+
+bool MddMotionValidator::discardedPartCollides(const ob::State* s1, const ob::State* s2) const {
+  const double f = discarded_fraction_.load(std::memory_order_relaxed);
+  // No look at the bounds: an edge that leaves them before f is dropped too
+  // (its lastValid is at most the exit), and one whose start is outside them
+  // gets (s1, 0) either way.
+  if (f == 0.0) return false;
+  const EdgeMotion motion = space_->motion(s1, s2);
+  if (!motion.rotates()) return false;
+  int pair_queries = 0;
+  const bool hit = scene_->collides(motion.pose(f), &pair_queries);
+  counters_.addPairQueries(static_cast<std::uint64_t>(pair_queries));
+  return hit;
+}
+
 bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                      std::pair<ob::State*, double>& lastValid) const {
   CheckerCounters::Timer timer(counters_);
   counters_.addMotionCheck();
+  // A planner that drops any lastValid at or below the discarded fraction
+  // gets (s1, 0) when the state there collides (setDiscardedLastValidFraction).
+  if (discardedPartCollides(s1, s2)) {
+    setLastValid(*si_, s1, s2, 0.0, lastValid);
+    countOmpl(false);
+    return false;
+  }
   const EdgeContact e = evaluate(s1, s2, EdgeQuery::kLastValid);
   if (!e.collides) {
     countOmpl(true);

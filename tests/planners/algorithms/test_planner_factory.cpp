@@ -48,6 +48,15 @@ TEST(PlannerFactory, KnowsOmplAppNamesAndOurs) {
   EXPECT_EQ(makePlanner("mdd_rrtconnect", si)->getName(), "ExactRRTConnect");
 }
 
+TEST(PlannerFactory, DiscardedLastValidFractionIsKpiecesMinValidPathFraction) {
+  const auto si = se3();
+  EXPECT_EQ(discardedLastValidFraction(*makePlanner("kpiece", si)), 0.2);  // OMPL's default
+  EXPECT_EQ(discardedLastValidFraction(*makePlanner("kpiece", si, {{"min_valid_path_fraction", "0.35"}})), 0.35);
+  for (const char* name : {"rrt", "rrtconnect", "mdd_rrtconnect", "bkpiece", "lbkpiece", "prm"}) {
+    EXPECT_EQ(discardedLastValidFraction(*makePlanner(name, si)), 0.0) << name;
+  }
+}
+
 TEST(PlannerFactory, BuildsEveryPlannerAConfigMayName) {
   const auto si = se3();
   for (const std::string& name : scene::knownPlannerNames()) {

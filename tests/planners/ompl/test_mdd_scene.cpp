@@ -262,7 +262,7 @@ TEST(MddSceneRotation, LastValidLevelTradesQueriesForATighterBound) {
   ASSERT_EQ(scene.name, "trap");
   MddSceneOptions options;
   std::vector<std::unique_ptr<MddScene>> scenes;  // levels 0, the default, the finest (and beyond it)
-  for (const int level : {0, kDefaultLastValidLevel, options.refinement_levels, 8}) {
+  for (const int level : {0, kDefaultLastValidLevel, options.refinement_levels, kMaxRefinementLevels}) {
     options.last_valid_level = level;
     scenes.push_back(std::make_unique<MddScene>(scene.robot, scene.world, options));
   }

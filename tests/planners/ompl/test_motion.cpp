@@ -10,6 +10,7 @@
 #include <ompl/base/ScopedState.h>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "mddual/generators.h"
 #include "test_support.h"
@@ -301,6 +302,65 @@ TEST_F(LastValid, CountersCountEveryCheck) {
   EXPECT_EQ(fx.mdd_motion->getInvalidMotionCount(), 1u);
   fx.mdd_motion->resetCounts();
   EXPECT_EQ(fx.mdd_motion->counts().motion_checks, 0u);
+}
+
+// A planner that drops every lastValid at or below a fraction (KPIECE's
+// min_valid_path_fraction): with the shortcut on, each of its decisions on
+// random rotating edges (valid; kept part; dropped) is the one it makes
+// without, and the shortcut's answer is (s1, 0) only where the state at the
+// fraction collides. Scenes: mesh (SE(3)), planar (SE(2)), trap (SE(3)).
+TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
+  const double f = 0.2;
+  int shortcuts = 0, kept = 0, invalid = 0, edges = 0;
+  for (const int index : {1, 2, 8}) {
+    const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(index)];
+    const Fixture fx = testing::makeFixture(scene);
+    testing::Rng rng(testing::seed() * 104729 + static_cast<std::uint64_t>(index));
+    const double extent = (scene.bounds.max() - scene.bounds.min()).head<2>().norm();
+    ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace());
+    ob::ScopedState<> last_off(fx.space->stateSpace()), last_on(fx.space->stateSpace());
+    for (int i = 0; i < 150 * testing::scale(); ++i) {
+      testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+      testing::randomEdgeEnd(*fx.space, s1.get(), (i % 2 == 0 ? 0.1 : 0.3) * extent, true, kPi, rng, s2.get());
+      const std::string where =
+          scene.name + " edge " + std::to_string(i) + ": " + testing::edgeString(fx, s1.get(), s2.get());
+      std::pair<ob::State*, double> off(last_off.get(), -1.0), on(last_on.get(), -1.0);
+      fx.mdd_motion->setDiscardedLastValidFraction(0.0);
+      const bool valid_off = fx.mdd_motion->checkMotion(s1.get(), s2.get(), off);
+      fx.mdd_motion->setDiscardedLastValidFraction(f);
+      const bool valid_on = fx.mdd_motion->checkMotion(s1.get(), s2.get(), on);
+      fx.mdd_motion->setDiscardedLastValidFraction(0.0);
+      ++edges;
+      ASSERT_EQ(valid_on, valid_off) << where;
+      if (valid_on) continue;
+      ++invalid;
+      EXPECT_EQ(on.second > f, off.second > f) << where << " lastValid " << on.second << " / " << off.second;
+      const bool collides_at_f = fx.mdd->collides(fx.space->motion(s1.get(), s2.get()).pose(f));
+      if (collides_at_f) {
+        ++shortcuts;
+        EXPECT_EQ(on.second, 0.0) << where;
+        EXPECT_EQ(last_on, s1) << where;
+      } else {
+        EXPECT_EQ(on.second, off.second) << where;
+        EXPECT_EQ(last_on, last_off) << where;
+      }
+      kept += off.second > f;
+    }
+  }
+  std::printf("%d edges, %d invalid: %d shortcuts, %d kept parts\n", edges, invalid, shortcuts, kept);
+  // Not a degenerate sample: both kinds of invalid edge.
+  EXPECT_GT(shortcuts, invalid / 10);
+  EXPECT_GT(kept, invalid / 10);
+}
+
+TEST(LastValidDiscard, FractionOutsideZeroToOneIsRefused) {
+  const Fixture fx = testing::makeFixture(testing::allScenes()[1]);
+  for (const double bad : {-0.1, 1.0, 2.0, testing::kNaN}) {
+    EXPECT_THROW(fx.mdd_motion->setDiscardedLastValidFraction(bad), InvalidInputError) << bad;
+  }
+  EXPECT_EQ(fx.mdd_motion->discardedLastValidFraction(), 0.0);
+  fx.mdd_motion->setDiscardedLastValidFraction(0.5);
+  EXPECT_EQ(fx.mdd_motion->discardedLastValidFraction(), 0.5);
 }
 
 // ---- Edges of the MddScene directly ----------------------------------------------------

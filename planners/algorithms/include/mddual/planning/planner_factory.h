@@ -41,4 +41,11 @@ std::string canonicalPlannerName(const std::string& name);
 std::vector<scene::PlannerSpec> selectPlannerSpecs(const std::vector<scene::PlannerSpec>& listed,
                                                    const std::vector<std::string>& names, const std::string& cfg_name);
 
+/// The largest lastValid fraction that `planner` drops, for
+/// MddMotionValidator::setDiscardedLastValidFraction: KPIECE1's
+/// min_valid_path_fraction (it keeps a partial motion only when
+/// lastValid.second is above it), 0 for every other planner (they use every
+/// lastValid they ask for, or ask for none).
+double discardedLastValidFraction(const ompl::base::Planner& planner);
+
 }  // namespace mddual::planning

@@ -185,6 +185,11 @@ class ProblemSetup {
   /// information does not have or a value it rejects.
   void applyPlannerContext(const scene::PlannerSpec& spec);
 
+  /// The MDD motion validator's MddMotionValidator::setDiscardedLastValidFraction
+  /// (checker kMdd; nothing for the others): the benchmark sets it per planner
+  /// to discardedLastValidFraction(planner). Throws InvalidInputError outside [0, 1).
+  void setDiscardedLastValidFraction(double fraction);
+
   /// The checkers' counts and time since the last resetStats().
   CheckStats stats() const;
   void resetStats();

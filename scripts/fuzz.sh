@@ -21,6 +21,9 @@ declare -A default_runs=([polytope]=10000 [cfg]=10000 [urdf]=10000 [mesh]=2000 [
 jobs="${MDDUAL_JOBS:-$(nproc)}"
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: MDDUAL_JOBS must be a positive integer (got '$jobs')"; exit 1; }
 declare -A pids
+for tool in clang++ ninja; do
+  command -v "$tool" >/dev/null || { echo "fuzz.sh: $tool not found (./scripts/install-deps.sh installs it)"; exit 1; }
+done
 # -O1 and line tables only, as the sanitizer builds of scripts/test.sh.
 source scripts/instrumented-flags.sh
 # Ninja, not Make: it compiles a target's files while the libraries it links

@@ -287,6 +287,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       if (count > 1) p->setName(p->getName() + "_" + std::to_string(count));
       setup.applyPlannerContext(specs[i]);
       discarded_fraction.push_back(discardedLastValidFraction(*p));
+      setup.setDiscardedLastValidFraction(discarded_fraction.back());  // tried once now, as the context
       p = std::make_shared<MeteredPlanner>(p, [&setup, &solve_stats] { solve_stats = setup.stats(); });
       spec_of[p.get()] = i;
       planners.push_back(p);
@@ -310,8 +311,8 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     bench.setPlannerSwitchEvent([&](const ob::PlannerPtr& planner) {
       try {
         current = spec_of.at(planner.get());
-        setup.applyPlannerContext(specs[current]);
         setup.setDiscardedLastValidFraction(discarded_fraction[current]);
+        setup.applyPlannerContext(specs[current]);
       } catch (...) {
         if (!failure) failure = std::current_exception();
       }

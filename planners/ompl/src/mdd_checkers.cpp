@@ -24,7 +24,10 @@ constexpr double kBackoffGrowth = 10.0;
 
 void setLastValid(const ob::SpaceInformation& si, const ob::State* s1, const ob::State* s2, double first_invalid,
                   std::pair<ob::State*, double>& lastValid) {
-  ob::State* state = lastValid.first ? lastValid.first : si.allocState();
+  // Candidates go to a scratch state: lastValid.first may be s2 itself
+  // (KPIECE1 passes the state it sampled as both), which a first rejected
+  // candidate would otherwise overwrite before the next is interpolated.
+  ob::State* state = si.allocState();
   double t = 0.0;
   if (first_invalid > 0.0) {
     for (double backoff = kFirstBackoff; backoff < first_invalid; backoff *= kBackoffGrowth) {
@@ -36,9 +39,9 @@ void setLastValid(const ob::SpaceInformation& si, const ob::State* s1, const ob:
       }
     }
   }
-  if (t == 0.0) si.copyState(state, s1);
+  if (lastValid.first) si.copyState(lastValid.first, t == 0.0 ? s1 : state);
   lastValid.second = t;
-  if (!lastValid.first) si.freeState(state);
+  si.freeState(state);
 }
 
 // ---- MddStateValidityChecker -------------------------------------------------------
@@ -146,8 +149,8 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) c
 }
 
 void MddMotionValidator::setDiscardedLastValidFraction(double fraction) {
-  if (!(fraction >= 0.0 && fraction < 1.0)) {
-    throw InvalidInputError("MddMotionValidator: the discarded lastValid fraction must be in [0, 1), got " +
+  if (!(fraction >= 0.0 && fraction <= 1.0)) {
+    throw InvalidInputError("MddMotionValidator: the discarded lastValid fraction must be in [0, 1], got " +
                             std::to_string(fraction));
   }
   discarded_fraction_.store(fraction, std::memory_order_relaxed);
@@ -155,10 +158,9 @@ void MddMotionValidator::setDiscardedLastValidFraction(double fraction) {
 
 bool MddMotionValidator::discardedPartCollides(const ob::State* s1, const ob::State* s2) const {
   const double f = discarded_fraction_.load(std::memory_order_relaxed);
-  // No look at the bounds: an edge that leaves them before f is dropped too
-  // (its lastValid is at most the exit), and one whose start is outside them
-  // gets (s1, 0) either way.
-  if (f == 0.0) return false;
+  // An edge that leaves the bounds before f is dropped too (its lastValid is
+  // at most the exit); a start outside them takes evaluate's (s1, 0) path.
+  if (f == 0.0 || !si_->satisfiesBounds(s1)) return false;
   const EdgeMotion motion = space_->motion(s1, s2);
   if (!motion.rotates()) return false;
   int pair_queries = 0;

@@ -330,6 +330,14 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
       fx.mdd_motion->setDiscardedLastValidFraction(f);
       const bool valid_on = fx.mdd_motion->checkMotion(s1.get(), s2.get(), on);
       fx.mdd_motion->setDiscardedLastValidFraction(0.0);
+      // As KPIECE1 calls it: lastValid.first is the end state itself.
+      ob::ScopedState<> s2_alias(s2);
+      std::pair<ob::State*, double> alias(s2_alias.get(), -1.0);
+      EXPECT_EQ(fx.mdd_motion->checkMotion(s1.get(), s2_alias.get(), alias), valid_off) << where;
+      if (!valid_off) {
+        EXPECT_EQ(alias.second, off.second) << where;
+        EXPECT_EQ(s2_alias, last_off) << where;
+      }
       ++edges;
       ASSERT_EQ(valid_on, valid_off) << where;
       if (valid_on) continue;
@@ -355,12 +363,12 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
 
 TEST(LastValidDiscard, FractionOutsideZeroToOneIsRefused) {
   const Fixture fx = testing::makeFixture(testing::allScenes()[1]);
-  for (const double bad : {-0.1, 1.0, 2.0, testing::kNaN}) {
+  for (const double bad : {-0.1, 1.5, 2.0, testing::kNaN}) {
     EXPECT_THROW(fx.mdd_motion->setDiscardedLastValidFraction(bad), InvalidInputError) << bad;
   }
   EXPECT_EQ(fx.mdd_motion->discardedLastValidFraction(), 0.0);
-  fx.mdd_motion->setDiscardedLastValidFraction(0.5);
-  EXPECT_EQ(fx.mdd_motion->discardedLastValidFraction(), 0.5);
+  fx.mdd_motion->setDiscardedLastValidFraction(1.0);  // KPIECE accepts 1: every failed edge dropped
+  EXPECT_EQ(fx.mdd_motion->discardedLastValidFraction(), 1.0);
 }
 
 // ---- Edges of the MddScene directly ----------------------------------------------------

@@ -44,8 +44,8 @@ std::vector<scene::PlannerSpec> selectPlannerSpecs(const std::vector<scene::Plan
 /// The largest lastValid fraction that `planner` drops, for
 /// MddMotionValidator::setDiscardedLastValidFraction: KPIECE1's
 /// min_valid_path_fraction (it keeps a partial motion only when
-/// lastValid.second is above it), 0 for every other planner (they use every
-/// lastValid they ask for, or ask for none).
+/// lastValid.second is above it), 0 for every other planner: the safe
+/// default (BKPIECE1 and LBKPIECE1 have the parameter too, not yet checked).
 double discardedLastValidFraction(const ompl::base::Planner& planner);
 
 }  // namespace mddual::planning

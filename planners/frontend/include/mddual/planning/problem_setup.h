@@ -187,7 +187,8 @@ class ProblemSetup {
 
   /// The MDD motion validator's MddMotionValidator::setDiscardedLastValidFraction
   /// (checker kMdd; nothing for the others): the benchmark sets it per planner
-  /// to discardedLastValidFraction(planner). Throws InvalidInputError outside [0, 1).
+  /// to discardedLastValidFraction(planner). Throws InvalidInputError outside
+  /// [0, 1] (whatever the checker).
   void setDiscardedLastValidFraction(double fraction);
 
   /// The checkers' counts and time since the last resetStats().

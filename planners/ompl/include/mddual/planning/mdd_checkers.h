@@ -137,10 +137,10 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   /// (copy of s1, 0) without searching for the first contact. The planner
   /// decides as it would have: the first contact is before that state, so
   /// the true bound would be at most `fraction` too. The contract above
-  /// holds (s1 is a valid last state, the verdict is the same). 0, the
-  /// default, turns it off; translation edges never take it (their exact
+  /// holds ((s1, 0) as for a colliding start; the verdict is the same). 0,
+  /// the default, turns it off; translation edges never take it (their exact
   /// sweep costs about what the state test costs). Throws InvalidInputError
-  /// outside [0, 1). Set it between planner runs, not during one.
+  /// outside [0, 1]. Set it between planner runs, not during one.
   void setDiscardedLastValidFraction(double fraction);
   double discardedLastValidFraction() const { return discarded_fraction_.load(std::memory_order_relaxed); }
 

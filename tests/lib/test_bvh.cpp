@@ -79,6 +79,22 @@ std::vector<ConvexPolytope> polytopes(const std::vector<Points>& pieces) {
   return out;
 }
 
+/// The brute force's pairs (i, j) whose pieces intersect, B's pieces posed at X_WB.
+std::set<std::pair<int, int>> intersectingPairs(const std::vector<ConvexPolytope>& ca,
+                                                const std::vector<ConvexPolytope>& cb, const Eigen::Isometry3d& X_WB) {
+  std::set<std::pair<int, int>> out;
+  for (std::size_t i = 0; i < ca.size(); ++i) {
+    for (std::size_t j = 0; j < cb.size(); ++j) {
+      IntersectInput in;
+      in.a = &ca[i];
+      in.b = &cb[j];
+      in.X_WB = X_WB;
+      if (intersect(in).intersecting) out.emplace(static_cast<int>(i), static_cast<int>(j));
+    }
+  }
+  return out;
+}
+
 /// Checks that every node's volumes hold its pieces' points, that boxes hold
 /// their children's boxes, and the tree's bookkeeping.
 void expectInvariants(const Bvh& t, const std::vector<Points>& pieces) {
@@ -278,16 +294,8 @@ TEST(Bvh, TreeAgainstTreeFindsEveryIntersectingPairAmongTheBruteForceCandidates)
       EXPECT_EQ(stats.leaf_pairs, static_cast<int>(tree.size()));
       // Fewer node tests than the brute force's pair tests.
       EXPECT_LT(stats.node_pairs, static_cast<int>(pa.size() * pb.size()));
-      for (int i = 0; i < a.numPieces(); ++i) {
-        for (int j = 0; j < b.numPieces(); ++j) {
-          IntersectInput in;
-          in.a = &ca[static_cast<std::size_t>(i)];
-          in.b = &cb[static_cast<std::size_t>(j)];
-          in.X_WB = X;
-          if (intersect(in).intersecting) {
-            EXPECT_EQ(tree.count({i, j}), 1u) << "missed pair " << i << ", " << j;
-          }
-        }
+      for (const auto& [i, j] : intersectingPairs(ca, cb, X)) {
+        EXPECT_EQ(tree.count({i, j}), 1u) << "missed pair " << i << ", " << j;
       }
     }
   }
@@ -465,16 +473,9 @@ TEST(Bvh, CastWithAMarginCallsEveryPairItWouldCallWithoutAndMore) {
     const std::set<std::pair<int, int>> without = seenWith(0.0), with = seenWith(0.5);
     for (const auto& p : without) EXPECT_EQ(with.count(p), 1u) << where;
     margin_added += with.size() > without.size();
-    for (int i = 0; i < a.numPieces(); ++i) {
-      for (int j = 0; j < b.numPieces(); ++j) {
-        IntersectInput in;
-        in.a = &ca[static_cast<std::size_t>(i)];
-        in.b = &cb[static_cast<std::size_t>(j)];
-        in.X_WB = X;
-        if (!intersect(in).intersecting) continue;
-        ++intersecting;
-        EXPECT_EQ(without.count({i, j}), 1u) << where << ", pair " << i << " " << j;
-      }
+    for (const auto& [i, j] : intersectingPairs(ca, cb, X)) {
+      ++intersecting;
+      EXPECT_EQ(without.count({i, j}), 1u) << where << ", pair " << i << " " << j;
     }
   }
   // Not a degenerate sample: pairs that intersect at the start, and poses

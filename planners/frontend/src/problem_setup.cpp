@@ -522,9 +522,6 @@ ob::PlannerPtr ProblemSetup::makePlanner(const scene::PlannerSpec& spec) const {
 }
 
 void ProblemSetup::setDiscardedLastValidFraction(double fraction) {
-  if (!(fraction >= 0.0 && fraction <= 1.0)) {
-    throw InvalidInputError("the discarded lastValid fraction must be in [0, 1], got " + std::to_string(fraction));
-  }
   if (mdd_motion_) mdd_motion_->setDiscardedLastValidFraction(fraction);
 }
 

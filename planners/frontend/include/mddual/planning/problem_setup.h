@@ -187,8 +187,7 @@ class ProblemSetup {
 
   /// The MDD motion validator's MddMotionValidator::setDiscardedLastValidFraction
   /// (checker kMdd; nothing for the others): the benchmark sets it per planner
-  /// to discardedLastValidFraction(planner). Throws InvalidInputError outside
-  /// [0, 1] (whatever the checker).
+  /// to discardedLastValidFraction(planner). Throws as that method does.
   void setDiscardedLastValidFraction(double fraction);
 
   /// The checkers' counts and time since the last resetStats().

@@ -256,11 +256,15 @@ std::vector<scene::PlannerSpec> selectPlannerSpecs(const std::vector<scene::Plan
 }
 
 double discardedLastValidFraction(const ob::Planner& planner) {
-  // KPIECE1::solve keeps a failed extension only when lastValid.second >
-  // minValidPathFraction_ (OMPL 1.5). Other planners with this parameter
-  // (BKPIECE1, LBKPIECE1, STRIDE) are left out until their use is checked.
-  const auto* kpiece = dynamic_cast<const og::KPIECE1*>(&planner);
-  return kpiece != nullptr ? kpiece->getMinValidPathFraction() : 0.0;
+  // KPIECE1, BKPIECE1 and STRIDE keep a failed extension, and LBKPIECE1
+  // re-adds the valid part of a failed lazy edge, only when lastValid.second
+  // > minValidPathFraction_ (OMPL 1.5's solve() and isPathValid()); a
+  // smaller fraction is dropped whatever its exact value.
+  if (const auto* p = dynamic_cast<const og::KPIECE1*>(&planner)) return p->getMinValidPathFraction();
+  if (const auto* p = dynamic_cast<const og::BKPIECE1*>(&planner)) return p->getMinValidPathFraction();
+  if (const auto* p = dynamic_cast<const og::LBKPIECE1*>(&planner)) return p->getMinValidPathFraction();
+  if (const auto* p = dynamic_cast<const og::STRIDE*>(&planner)) return p->getMinValidPathFraction();
+  return 0.0;
 }
 
 }  // namespace mddual::planning

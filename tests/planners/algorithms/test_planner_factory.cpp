@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <set>
+#include <string>
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
@@ -48,11 +50,15 @@ TEST(PlannerFactory, KnowsOmplAppNamesAndOurs) {
   EXPECT_EQ(makePlanner("mdd_rrtconnect", si)->getName(), "ExactRRTConnect");
 }
 
-TEST(PlannerFactory, DiscardedLastValidFractionIsKpiecesMinValidPathFraction) {
+TEST(PlannerFactory, DiscardedLastValidFractionIsTheKpieceFamilysMinValidPathFraction) {
   const auto si = se3();
-  EXPECT_EQ(discardedLastValidFraction(*makePlanner("kpiece", si)), 0.2);  // OMPL's default
-  EXPECT_EQ(discardedLastValidFraction(*makePlanner("kpiece", si, {{"min_valid_path_fraction", "0.35"}})), 0.35);
-  for (const char* name : {"rrt", "rrtconnect", "mdd_rrtconnect", "bkpiece", "lbkpiece", "prm"}) {
+  // OMPL 1.5's defaults: 0.2 for KPIECE1 and STRIDE, 0.5 for the bidirectional two.
+  for (const auto& [name, fraction] :
+       std::map<std::string, double>{{"kpiece", 0.2}, {"bkpiece", 0.5}, {"lbkpiece", 0.5}, {"stride", 0.2}}) {
+    EXPECT_EQ(discardedLastValidFraction(*makePlanner(name, si)), fraction) << name;
+    EXPECT_EQ(discardedLastValidFraction(*makePlanner(name, si, {{"min_valid_path_fraction", "0.35"}})), 0.35) << name;
+  }
+  for (const char* name : {"rrt", "rrtconnect", "mdd_rrtconnect", "est", "pdst", "prm"}) {
     EXPECT_EQ(discardedLastValidFraction(*makePlanner(name, si)), 0.0) << name;
   }
 }

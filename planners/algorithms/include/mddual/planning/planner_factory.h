@@ -42,10 +42,10 @@ std::vector<scene::PlannerSpec> selectPlannerSpecs(const std::vector<scene::Plan
                                                    const std::vector<std::string>& names, const std::string& cfg_name);
 
 /// The largest lastValid fraction that `planner` drops, for
-/// MddMotionValidator::setDiscardedLastValidFraction: KPIECE1's
-/// min_valid_path_fraction (it keeps a partial motion only when
-/// lastValid.second is above it), 0 for every other planner: the safe
-/// default (BKPIECE1 and LBKPIECE1 have the parameter too, not yet checked).
+/// MddMotionValidator::setDiscardedLastValidFraction: the
+/// min_valid_path_fraction of KPIECE1, BKPIECE1, LBKPIECE1 and STRIDE (each
+/// keeps a partial motion only when lastValid.second is above it), 0 for
+/// every other planner (the safe default: nothing is dropped).
 double discardedLastValidFraction(const ompl::base::Planner& planner);
 
 }  // namespace mddual::planning

@@ -226,16 +226,23 @@ Group randomGroup(int n, const Options& opt, Rng& rng) {
   g.name = std::to_string(n) + " vertices";
   g.scale = 0.0;
   for (int p = 0; p < opt.pairs_per_size; ++p) {
-    const Eigen::Vector3d axes_a(uniform(rng, 1.0, 2.0), uniform(rng, 1.0, 2.0), uniform(rng, 1.0, 2.0));
-    const Eigen::Vector3d axes_b(uniform(rng, 1.0, 2.0), uniform(rng, 1.0, 2.0), uniform(rng, 1.0, 2.0));
+    const Eigen::Vector3d axes_a =
+        mddual::generators::drawVector(std::uniform_real_distribution<double>(1.0, 2.0), rng);
+    const Eigen::Vector3d axes_b =
+        mddual::generators::drawVector(std::uniform_real_distribution<double>(1.0, 2.0), rng);
     const int ia = addPolytope(&g, mddual::generators::blob(n, axes_a, rng));
     const int ib = addPolytope(&g, mddual::generators::blob(n, axes_b, rng));
     const double reach = axes_a.minCoeff() + axes_b.minCoeff();
     for (int k = 0; k < opt.placements;) {
       PdQuery q;
       q.X_WA = pose(mddual::generators::randomRotation(rng), Eigen::Vector3d::Zero());
-      q.X_WB = pose(mddual::generators::randomRotation(rng),
-                    mddual::generators::randomUnitVector(rng) * uniform(rng, 0.0, 0.9 * reach));
+      // B's offset length, its direction, then its rotation: the order GCC
+      // evaluated them in one call (C++ leaves it unspecified), kept so the
+      // seeded queries stay as they were.
+      const double length = uniform(rng, 0.0, 0.9 * reach);
+      const Eigen::Vector3d direction = mddual::generators::randomUnitVector(rng);
+      const Eigen::Matrix3d R_WB = mddual::generators::randomRotation(rng);
+      q.X_WB = pose(R_WB, direction * length);
       g.queries.push_back(q);
       g.pair_of.emplace_back(ia, ib);
       if (exactPd(g, g.queries.size() - 1) > 0.0) {
@@ -272,35 +279,48 @@ std::vector<Group> hardGroups(const Options& opt, Rng& rng) {
   using mddual::generators::randomRotation;
   using mddual::generators::randomUnitVector;
   const Points triangle = mddual::generators::triangle({-2.0, -1.5, 0.0}, {2.0, -1.5, 0.0}, {0.0, 2.0, 0.0});
+  // The draws below are in the order GCC evaluated the call arguments they
+  // were once written in, last argument first (C++ leaves the order
+  // unspecified), so the seeded queries and shapes stay as they were.
   make("triangle through box", box({1.0, 0.8, 0.6}), triangle, [&] {
     // The triangle's plane through the box's interior, tilted at random.
     PdQuery q;
-    q.X_WB = pose(randomRotation(rng), 0.4 * randomUnitVector(rng));
+    const Eigen::Vector3d p = 0.4 * randomUnitVector(rng);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    q.X_WB = pose(R, p);
     return q;
   });
   make("slab / slab 1:100", box({1.0, 1.0, 0.01}), box({1.0, 1.0, 0.01}), [&] {
     PdQuery q;
     q.X_WA = pose(randomRotation(rng), Eigen::Vector3d::Zero());
-    q.X_WB = pose(randomRotation(rng), 0.3 * randomUnitVector(rng));
+    const Eigen::Vector3d p = 0.3 * randomUnitVector(rng);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    q.X_WB = pose(R, p);
     return q;
   });
   make("needle / box 1:100", box({0.8, 0.6, 0.7}), box({0.01, 0.01, 1.5}), [&] {
     PdQuery q;
-    q.X_WB = pose(randomRotation(rng), 0.5 * randomUnitVector(rng));
+    const Eigen::Vector3d p = 0.5 * randomUnitVector(rng);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    q.X_WB = pose(R, p);
     return q;
   });
-  make("deep: small blob in large", mddual::generators::blob(60, {2.0, 1.6, 1.8}, rng),
-       mddual::generators::blob(40, {0.2, 0.15, 0.25}, rng), [&] {
-         PdQuery q;
-         q.X_WA = pose(randomRotation(rng), Eigen::Vector3d::Zero());
-         q.X_WB = pose(randomRotation(rng), 0.2 * randomUnitVector(rng));
-         return q;
-       });
+  const Points small_blob = mddual::generators::blob(40, {0.2, 0.15, 0.25}, rng);
+  const Points large_blob = mddual::generators::blob(60, {2.0, 1.6, 1.8}, rng);
+  make("deep: small blob in large", large_blob, small_blob, [&] {
+    PdQuery q;
+    q.X_WA = pose(randomRotation(rng), Eigen::Vector3d::Zero());
+    const Eigen::Vector3d p = 0.2 * randomUnitVector(rng);
+    const Eigen::Matrix3d R = randomRotation(rng);
+    q.X_WB = pose(R, p);
+    return q;
+  });
   make("touching boxes (PD 0)", box({0.5, 0.5, 0.5}), box({0.5, 0.5, 0.5}), [&] {
     // Face, edge or corner contact at exact offsets, in a random common orientation.
     const Eigen::Matrix3d R = randomRotation(rng);
-    Eigen::Vector3d p(1.0, std::uniform_int_distribution<int>(-2, 2)(rng) * 0.25,
-                      std::uniform_int_distribution<int>(0, 1)(rng) * 1.0);
+    const double p_z = std::uniform_int_distribution<int>(0, 1)(rng) * 1.0;
+    const double p_y = std::uniform_int_distribution<int>(-2, 2)(rng) * 0.25;
+    Eigen::Vector3d p(1.0, p_y, p_z);
     PdQuery q;
     q.X_WA = pose(R, Eigen::Vector3d::Zero());
     q.X_WB = pose(R, R * p);

@@ -150,7 +150,7 @@ Eigen::Matrix3d randomRotation(Rng& rng) {
 
 Eigen::Vector3d randomUnitVector(Rng& rng) {
   for (;;) {
-    const Eigen::Vector3d v(uniform(rng, -1.0, 1.0), uniform(rng, -1.0, 1.0), uniform(rng, -1.0, 1.0));
+    const Eigen::Vector3d v = drawVector(std::uniform_real_distribution<double>(-1.0, 1.0), rng);
     const double n = v.norm();
     if (n > 1e-3 && n <= 1.0) return v / n;
   }

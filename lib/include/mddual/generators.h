@@ -56,4 +56,17 @@ Eigen::Matrix3d randomRotation(Rng& rng);
 /// Uniformly random unit vector.
 Eigen::Vector3d randomUnitVector(Rng& rng);
 
+/// Three draws `dist(gen)` as a vector, drawn z first, then y, then x: the
+/// order GCC evaluates the arguments of `Eigen::Vector3d(dist(gen), dist(gen),
+/// dist(gen))` (C++ leaves it unspecified; Clang goes left to right), kept so
+/// seeded samples stay what GCC made them and are the same under any compiler.
+/// `dist` is any callable taking the generator (a distribution or a lambda).
+template <class Distribution, class Generator>
+Eigen::Vector3d drawVector(Distribution&& dist, Generator& gen) {
+  const double z = static_cast<double>(dist(gen));
+  const double y = static_cast<double>(dist(gen));
+  const double x = static_cast<double>(dist(gen));
+  return Eigen::Vector3d(x, y, z);
+}
+
 }  // namespace mddual::generators

@@ -153,9 +153,16 @@ ExampleScene primitivesScene(std::uint64_t seed, int obstacles) {
       convexPiece(transformed(generators::box({20.0, 20.0, 0.5}), translation({0, 0, -0.5})), "floor (box)"));
   const double circumscribe = 1.0 / std::cos(kPi / 16.0);  // 16-gon around the circle
   for (int i = 0; i < obstacles; ++i) {
-    const Eigen::Vector3d at(uniform(rng, -18, 18), uniform(rng, -18, 18), 0.0);
+    // Coordinates drawn last first: the order GCC gave the constructors'
+    // arguments (C++ leaves it unspecified), kept so the seeded scenes stay.
+    const double at_y = uniform(rng, -18, 18);
+    const double at_x = uniform(rng, -18, 18);
+    const Eigen::Vector3d at(at_x, at_y, 0.0);
     if (i % 2 == 0) {
-      const Eigen::Vector3d h(uniform(rng, 0.3, 2.0), uniform(rng, 0.3, 2.0), uniform(rng, 0.3, 3.0));
+      const double h_z = uniform(rng, 0.3, 3.0);
+      const double h_y = uniform(rng, 0.3, 2.0);
+      const double h_x = uniform(rng, 0.3, 2.0);
+      const Eigen::Vector3d h(h_x, h_y, h_z);
       Eigen::Isometry3d X = translation(at + Eigen::Vector3d(0, 0, uniform(rng, 0.0, 5.0)));
       X.linear() = generators::randomRotation(rng);
       world.push_back(convexPiece(transformed(generators::box(h), X), "box " + std::to_string(i)));
@@ -191,7 +198,7 @@ ExampleScene meshScene(std::uint64_t seed, int obstacles) {
     addRectangle({x, d - 1.2, 3.0}, {0, 2.4, 0}, {0, 0, H - 3.0}, "partition lintel", &world);
   }
   for (int i = 0; i < obstacles; ++i) {
-    const Eigen::Vector3d h(uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 1.5));
+    const Eigen::Vector3d h = generators::drawVector(std::uniform_real_distribution<double>(0.3, 1.5), rng);
     Eigen::Isometry3d X = translation({uniform(rng, -9, 9), uniform(rng, -9, 9), uniform(rng, 0.5, 5.5)});
     X.linear() = generators::randomRotation(rng);
     for (scene::Piece& p : boxTriangles(h, X, "mesh box " + std::to_string(i))) world.push_back(std::move(p));
@@ -208,7 +215,11 @@ ExampleScene planarScene(std::uint64_t seed, int obstacles) {
   std::vector<scene::Piece> world;
   for (int i = 0; i < obstacles; ++i) {
     std::vector<Eigen::Vector2d> poly = randomConvexPolygon(rng, uniform(rng, 0.5, 2.5));
-    const Eigen::Vector2d at(uniform(rng, -19, 19), uniform(rng, -19, 19));
+    // y drawn first: the order GCC gave the constructor's arguments (C++ leaves
+    // it unspecified), kept so the seeded scene stays as it was.
+    const double at_y = uniform(rng, -19, 19);
+    const double at_x = uniform(rng, -19, 19);
+    const Eigen::Vector2d at(at_x, at_y);
     for (Eigen::Vector2d& p : poly) p += at;
     world.push_back(convexPiece(extrude(poly, -0.5, 0.5), "polygon " + std::to_string(i)));
   }
@@ -223,7 +234,7 @@ ExampleScene blobScene(std::uint64_t seed, int obstacles) {
   Rng rng(seed);
   std::vector<scene::Piece> world;
   for (int i = 0; i < obstacles; ++i) {
-    const Eigen::Vector3d axes(uniform(rng, 0.5, 2.5), uniform(rng, 0.5, 2.5), uniform(rng, 0.5, 2.5));
+    const Eigen::Vector3d axes = generators::drawVector(std::uniform_real_distribution<double>(0.5, 2.5), rng);
     const int n = std::uniform_int_distribution<int>(20, 40)(rng);
     Eigen::Isometry3d X = translation({uniform(rng, -14, 14), uniform(rng, -14, 14), uniform(rng, -14, 14)});
     X.linear() = generators::randomRotation(rng);

@@ -215,12 +215,23 @@ std::string randomLines(int count) {
   std::mt19937_64 rng(20240601);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<int> size(4, 16);
-  auto vec = [&] { return Eigen::Vector3d(unit(rng), unit(rng), unit(rng)); };
+  // Draws in the order GCC evaluated the arguments they were once written in,
+  // last first (C++ leaves it unspecified): the seeded lines stay as they were.
+  auto vec = [&] {
+    const double z = unit(rng);
+    const double y = unit(rng);
+    const double x = unit(rng);
+    return Eigen::Vector3d(x, y, z);
+  };
   std::string input;
   for (int i = 0; i < count; ++i) {
-    const Json a = randomPoints(size(rng), Eigen::Vector3d::Zero(), 0.5 + std::abs(unit(rng)), rng);
+    const double half_a = 0.5 + std::abs(unit(rng));
+    const int n_a = size(rng);
+    const Json a = randomPoints(n_a, Eigen::Vector3d::Zero(), half_a, rng);
     Eigen::Vector3d offset = 3.0 * vec();
-    Json b = randomPoints(size(rng), Eigen::Vector3d::Zero(), 0.5 + std::abs(unit(rng)), rng);
+    const double half_b = 0.5 + std::abs(unit(rng));
+    const int n_b = size(rng);
+    Json b = randomPoints(n_b, Eigen::Vector3d::Zero(), half_b, rng);
     Eigen::Vector3d s = vec();
     if (i % 5 == 0) {
       const Eigen::Vector3d d = vec().normalized();

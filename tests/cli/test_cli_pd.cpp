@@ -107,7 +107,12 @@ TEST(CliPd, MethodsAgreeWithTheBruteForceOnRandomPairs) {
   auto blob = [&](int n, double r) {
     Json points = Json::array();
     for (int i = 0; i < n; ++i) {
-      Eigen::Vector3d v(normal(rng), normal(rng), normal(rng));
+      // z, y, x: the order GCC evaluated the constructor's arguments (C++
+      // leaves it unspecified), kept so the seeded points stay as they were.
+      const double z = normal(rng);
+      const double y = normal(rng);
+      const double x = normal(rng);
+      Eigen::Vector3d v(x, y, z);
       v = r * v.normalized();
       points.push_back({v.x(), v.y(), v.z()});
     }

@@ -111,7 +111,7 @@ Eigen::Isometry3d nearPath(const Fixture& fx, const std::vector<Eigen::Isometry3
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.linear() = randomTurn(kind, kPathTurn, rng) * q0.slerp(t, q1).toRotationMatrix();
   std::normal_distribution<double> normal(0.0, kPathSpread * fx.scene.robot->radius());
-  Eigen::Vector3d shift(normal(rng), normal(rng), normal(rng));
+  Eigen::Vector3d shift = generators::drawVector(normal, rng);
   if (kind == SpaceKind::kSE2) shift.z() = 0.0;
   X.translation() = path[k].translation() + t * (path[k + 1].translation() - path[k].translation()) + shift;
   return X;

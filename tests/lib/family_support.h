@@ -24,6 +24,39 @@ inline Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p
   return X;
 }
 
+/// A triangle of three random unit vectors times `scale`, the last vertex drawn
+/// first: the order GCC evaluated the arguments of the `triangle(
+/// randomUnitVector(rng) * scale, ...)` calls this replaces (C++ leaves it
+/// unspecified), kept so the seeded triangles stay as they were.
+inline generators::Points randomTriangle(generators::Rng& rng, double scale) {
+  const Eigen::Vector3d v2 = generators::randomUnitVector(rng) * scale;
+  const Eigen::Vector3d v1 = generators::randomUnitVector(rng) * scale;
+  const Eigen::Vector3d v0 = generators::randomUnitVector(rng) * scale;
+  return generators::triangle(v0, v1, v2);
+}
+
+/// A lattice of 1 to 3 unit steps along each axis, drawn z, y, x (the order GCC
+/// evaluated the `lattice()` arguments this replaces).
+inline generators::Points randomLattice(generators::Rng& rng) {
+  const int nz = uniformInt(rng, 1, 3);
+  const int ny = uniformInt(rng, 1, 3);
+  const int nx = uniformInt(rng, 1, 3);
+  return generators::lattice(nx, ny, nz, 1.0);
+}
+
+/// Prisms over a regular k-gon (B's: k or 2k sides at random) of circumradius
+/// in [0.3, 1.5] and height in [0.3, 2]. Each height is drawn before its
+/// radius and B's side count last: the order GCC evaluated the arguments of
+/// the `prism()` calls this replaces, kept so the seeded prisms stay.
+inline void randomPrisms(generators::Rng& rng, int k, generators::Points* a, generators::Points* b) {
+  const double h_a = uniform(rng, 0.3, 2.0);
+  const double r_a = uniform(rng, 0.3, 1.5);
+  *a = generators::prism(k, r_a, h_a);
+  const double h_b = uniform(rng, 0.3, 2.0);
+  const double r_b = uniform(rng, 0.3, 1.5);
+  *b = generators::prism(uniformInt(rng, 0, 1) ? k : 2 * k, r_b, h_b);
+}
+
 /// An integer from the environment (MDDUAL_SWEEP_SCALE, MDDUAL_SWEEP_SEED), or
 /// `fallback` when unset.
 inline long envLong(const char* name, long fallback) {

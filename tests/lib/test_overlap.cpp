@@ -25,7 +25,17 @@ double uniform(Rng& rng, double lo, double hi) {
 }
 
 Eigen::Vector3d randomPoint(Rng& rng, double r) {
-  return Eigen::Vector3d(uniform(rng, -r, r), uniform(rng, -r, r), uniform(rng, -r, r));
+  return generators::drawVector(std::uniform_real_distribution<double>(-r, r), rng);
+}
+
+/// A triangle of random points in [-r, r]^3, the last vertex drawn first: the
+/// order GCC evaluated triangle()'s arguments when they were drawn in the call
+/// (C++ leaves it unspecified), kept so the seeded triangles stay as they were.
+Points randomTriangle(Rng& rng, double r) {
+  const Eigen::Vector3d v2 = randomPoint(rng, r);
+  const Eigen::Vector3d v1 = randomPoint(rng, r);
+  const Eigen::Vector3d v0 = randomPoint(rng, r);
+  return generators::triangle(v0, v1, v2);
 }
 
 Eigen::Isometry3d randomPose(Rng& rng, double r) {
@@ -39,8 +49,8 @@ TEST(Overlap, TrianglesSeparatedOnlyWhereTheBruteForceSeparates) {
   Rng rng(11);
   int separated = 0, certified = 0, overlapping = 0, touching = 0;
   for (int q = 0; q < 3000; ++q) {
-    const Points ta = generators::triangle(randomPoint(rng, 1), randomPoint(rng, 1), randomPoint(rng, 1));
-    Points tb = generators::triangle(randomPoint(rng, 1), randomPoint(rng, 1), randomPoint(rng, 1));
+    const Points ta = randomTriangle(rng, 1);
+    Points tb = randomTriangle(rng, 1);
     const ConvexPolytope a = ConvexPolytope::fromPoints(ta);
     const Eigen::Isometry3d X_WA = randomPose(rng, 0.5);
     Eigen::Isometry3d X_WB = randomPose(rng, 0.6);
@@ -50,7 +60,10 @@ TEST(Overlap, TrianglesSeparatedOnlyWhereTheBruteForceSeparates) {
       const Eigen::Vector3d n_A = (ta[1] - ta[0]).cross(ta[2] - ta[0]).normalized();
       const double w0 = uniform(rng, 0.1, 0.8), w1 = uniform(rng, 0.1, 1.0 - w0 - 0.05);
       const Eigen::Vector3d p_A = w0 * ta[0] + w1 * ta[1] + (1.0 - w0 - w1) * ta[2];
-      tb = generators::triangle(p_A, p_A + n_A + randomPoint(rng, 0.5).cross(n_A), p_A + n_A + randomPoint(rng, 0.5));
+      // The last vertex first, as GCC evaluated triangle()'s arguments.
+      const Eigen::Vector3d v2 = p_A + n_A + randomPoint(rng, 0.5);
+      const Eigen::Vector3d v1 = p_A + n_A + randomPoint(rng, 0.5).cross(n_A);
+      tb = generators::triangle(p_A, v1, v2);
       X_WB = X_WA;  // B's points are given in A's body frame
     }
     const ConvexPolytope b = ConvexPolytope::fromPoints(tb);

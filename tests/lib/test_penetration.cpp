@@ -38,6 +38,16 @@ Eigen::Isometry3d at(const Eigen::Vector3d& p) {
   return pose(Eigen::Matrix3d::Identity(), p);
 }
 
+/// A random rotation, placed `radius` from the origin in a random direction.
+/// The offset is drawn first: the order GCC evaluated pose()'s arguments when
+/// both were drawn in the call (C++ leaves it unspecified), kept so seeded
+/// poses stay as they were.
+Eigen::Isometry3d randomPoseAt(Rng& rng, double radius) {
+  const Eigen::Vector3d p = radius * generators::randomUnitVector(rng);
+  const Eigen::Matrix3d R = generators::randomRotation(rng);
+  return pose(R, p);
+}
+
 /// Axis-aligned box [lo, hi].
 Points boxFromTo(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   Points out;
@@ -206,7 +216,7 @@ TEST(PenetrationExact, EnumeratesExactlyTheFacetsOfM) {
     const ConvexPolytope a = ConvexPolytope::fromPoints(generators::blob(5 + i, {1, 1.3, 0.9}, rng));
     const ConvexPolytope b = ConvexPolytope::fromPoints(generators::blob(45 - i, {1.2, 0.8, 1}, rng));
     const Eigen::Isometry3d X_WA = pose(generators::randomRotation(rng), {0, 0, 0});
-    const Eigen::Isometry3d X_WB = pose(generators::randomRotation(rng), 0.5 * generators::randomUnitVector(rng));
+    const Eigen::Isometry3d X_WB = randomPoseAt(rng, 0.5);
     double all = 0.0;
     double pruned = 0.0;
     const PenetrationStats s = enumerate(a, X_WA, b, X_WB, false, &all);
@@ -256,7 +266,7 @@ TEST(PenetrationExact, LargeEllipsoidsAgreeWithTheBruteForce) {
   const ConvexPolytope b = ConvexPolytope::fromPoints(generators::roundedCubeRandom(200, rng));
   for (int i = 0; i < 3; ++i) {
     const Eigen::Isometry3d X_WA = pose(generators::randomRotation(rng), {0, 0, 0});
-    const Eigen::Isometry3d X_WB = pose(generators::randomRotation(rng), 2.0 * generators::randomUnitVector(rng));
+    const Eigen::Isometry3d X_WB = randomPoseAt(rng, 2.0);
     const PenetrationResult brute = pd(a, X_WA, b, X_WB, PenetrationMethod::kBruteForce);
     for (PenetrationMethod m : {PenetrationMethod::kExact, PenetrationMethod::kShallow}) {
       const PenetrationResult r = pd(a, X_WA, b, X_WB, m);
@@ -295,7 +305,7 @@ TEST(Width, KnownSolidsInRandomPoses) {
   for (const Case& c : cases) {
     const ConvexPolytope p = ConvexPolytope::fromPoints(c.points);
     for (int i = 0; i < 3; ++i) {
-      const Eigen::Isometry3d X = pose(generators::randomRotation(rng), 10.0 * generators::randomUnitVector(rng));
+      const Eigen::Isometry3d X = randomPoseAt(rng, 10.0);
       for (PenetrationMethod m : kAllMethods) {
         for (double delta : {0.5, 0.1, 0.01}) {
           if (delta != 0.5 && m != PenetrationMethod::kApprox) continue;
@@ -373,7 +383,7 @@ TEST(PolyhedralMetric, AgreesWithTheBruteForceOnRandomPairs) {
     const ConvexPolytope b = i % 3 == 0 ? ConvexPolytope::fromPoints(generators::box({0.5, 0.3, 0.8}))
                                         : ConvexPolytope::fromPoints(generators::blob(4 + i % 17, {0.8, 1, 1.1}, rng));
     const Eigen::Isometry3d X_WA = pose(generators::randomRotation(rng), {0, 0, 0});
-    const Eigen::Isometry3d X_WB = pose(generators::randomRotation(rng), 1.2 * generators::randomUnitVector(rng));
+    const Eigen::Isometry3d X_WB = randomPoseAt(rng, 1.2);
     for (const PolyhedralMetric& k : metrics) {
       const PolyhedralResult fast = polyhedralPenetrationDepth({&a, X_WA, &b, X_WB, &k});
       const PolyhedralResult brute =

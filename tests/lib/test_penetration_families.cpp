@@ -55,14 +55,17 @@ void checkPair(const Points& a_pts, const Eigen::Isometry3d& X_WA, const Points&
 
 /// Random blobs, B at a random offset around A (scaled), mostly overlapping.
 void blobScene(Rng& rng, PdOracle& o, PdTally* tally, double scale, const Eigen::Vector3d& offset) {
-  const Eigen::Vector3d axes_a(uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0));
-  const Eigen::Vector3d axes_b(uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0));
+  const Eigen::Vector3d axes_a = generators::drawVector(std::uniform_real_distribution<double>(0.5, 2.0), rng);
+  const Eigen::Vector3d axes_b = generators::drawVector(std::uniform_real_distribution<double>(0.5, 2.0), rng);
   const Points a = generators::blob(uniformInt(rng, 4, 40), axes_a * scale, rng);
   const Points b = generators::blob(uniformInt(rng, 4, 40), axes_b * scale, rng);
   const double reach = (axes_a.minCoeff() + axes_b.minCoeff()) * scale;
   const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.3 * reach);
-  checkPair(a, pose(generators::randomRotation(rng), offset), b, pose(generators::randomRotation(rng), offset + p_b), o,
-            tally);
+  // B's rotation first: the order GCC evaluated checkPair()'s arguments (C++
+  // leaves it unspecified), kept so the seeded scenes stay as they were.
+  const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
+  const Eigen::Matrix3d R_WA = generators::randomRotation(rng);
+  checkPair(a, pose(R_WA, offset), b, pose(R_WB, offset + p_b), o, tally);
 }
 
 TEST(PenetrationFamilies, RoundBlobs) {
@@ -86,10 +89,9 @@ TEST(PenetrationFamilies, BoxesAndPrismsInTheSameOrientation) {
           b = generators::box({uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5)});
         } else {
           const int k = uniformInt(rng, 3, 8);
-          a = generators::prism(k, uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 2.0));
-          b = generators::prism(uniformInt(rng, 0, 1) ? k : 2 * k, uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 2.0));
+          randomPrisms(rng, k, &a, &b);
         }
-        const Eigen::Vector3d p_b(uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5), uniform(rng, -1.5, 1.5));
+        const Eigen::Vector3d p_b = generators::drawVector(std::uniform_real_distribution<double>(-1.5, 1.5), rng);
         checkPair(a, pose(R, Eigen::Vector3d::Zero()), b, pose(R, R * p_b), o, tally);
       },
       1202);
@@ -102,8 +104,8 @@ TEST(PenetrationFamilies, IntegerLatticePoints) {
   const PdTally t = runFamily(
       300,
       [](Rng& rng, PdOracle& o, PdTally* tally) {
-        const Points a = generators::lattice(uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), 1.0);
-        Points b = generators::lattice(uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), 1.0);
+        const Points a = randomLattice(rng);
+        Points b = randomLattice(rng);
         if (uniformInt(rng, 0, 2) == 0) {  // sloped faces
           b = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 2, 0),
                Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 0, 1)};
@@ -135,8 +137,10 @@ TEST(PenetrationFamilies, NeedlesAndSlabs) {
         const Points a = shape();
         const Points b = shape();
         const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 0.7);
-        checkPair(a, pose(generators::randomRotation(rng), Eigen::Vector3d::Zero()), b,
-                  pose(generators::randomRotation(rng), p_b), o, tally);
+        // B's rotation first, as GCC evaluated checkPair()'s arguments.
+        const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
+        const Eigen::Matrix3d R_WA = generators::randomRotation(rng);
+        checkPair(a, pose(R_WA, Eigen::Vector3d::Zero()), b, pose(R_WB, p_b), o, tally);
       },
       1404);
   EXPECT_GE(t.fraction(t.penetrating), 0.3);
@@ -149,10 +153,7 @@ TEST(PenetrationFamilies, FlatTrianglesAgainstSolidsAndTriangles) {
   const PdTally t = runFamily(
       400,
       [](Rng& rng, PdOracle& o, PdTally* tally) {
-        auto tri = [&]() {
-          return generators::triangle(generators::randomUnitVector(rng) * 1.5, generators::randomUnitVector(rng) * 1.5,
-                                      generators::randomUnitVector(rng) * 1.5);
-        };
+        auto tri = [&]() { return randomTriangle(rng, 1.5); };
         const int kind = uniformInt(rng, 0, 3);
         Points a = tri();
         Points b = kind == 0   ? tri()
@@ -188,8 +189,8 @@ TEST(PenetrationFamilies, ExactlyTouchingPlacements) {
   const PdTally t = runFamily(
       300,
       [](Rng& rng, PdOracle& o, PdTally* tally) {
-        const Eigen::Vector3d ha(0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4));
-        const Eigen::Vector3d hb(0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4));
+        const Eigen::Vector3d ha = 0.5 * generators::drawVector(std::uniform_int_distribution<int>(1, 4), rng);
+        const Eigen::Vector3d hb = 0.5 * generators::drawVector(std::uniform_int_distribution<int>(1, 4), rng);
         Eigen::Vector3d p_b;
         for (int i = 0; i < 3; ++i) {
           const int mode = uniformInt(rng, 0, 2);  // 0: overlapping range, 1 / 2: touching on either side
@@ -215,8 +216,10 @@ TEST(PenetrationFamilies, DeepPenetration) {
                                                : generators::box({1.0, 0.6, 1.3});
         const Points b = generators::blob(uniformInt(rng, 6, 40), Eigen::Vector3d(0.9, 0.7, 1.1) * size_b, rng);
         const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 0.1);
-        checkPair(a, pose(generators::randomRotation(rng), Eigen::Vector3d::Zero()), b,
-                  pose(generators::randomRotation(rng), p_b), o, tally);
+        // B's rotation first, as GCC evaluated checkPair()'s arguments.
+        const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
+        const Eigen::Matrix3d R_WA = generators::randomRotation(rng);
+        checkPair(a, pose(R_WA, Eigen::Vector3d::Zero()), b, pose(R_WB, p_b), o, tally);
       },
       1707);
   // Almost all overlap; a few do not (a thin blob A whose centroid lies near

@@ -341,30 +341,43 @@ TEST(Query, WarmStartGivesTheColdAnswers) {
 
 // Shapes of the warm-start property test: generic hulls, and bodies with
 // vertical edges (prisms, boxes, upright triangles), whose edges stay parallel
-// under rotations about z, as on the planar mesh configs.
+// under rotations about z, as on the planar mesh configs. The draws of one
+// call's arguments are made last argument first, the order GCC evaluated them
+// (C++ leaves it unspecified), so that the seeded shapes stay as they were.
 ConvexPolytope randomShape(generators::Rng& rng) {
   std::uniform_int_distribution<int> kind(0, 3);
   std::uniform_real_distribution<double> size(0.3, 1.2);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   switch (kind(rng)) {
     case 0: return ConvexPolytope::fromPoints(generators::blob(12, {size(rng), size(rng), size(rng)}, rng));
-    case 1: return ConvexPolytope::fromPoints(generators::prism(3 + (kind(rng) % 4), size(rng), size(rng)));
+    case 1: {
+      const double height = size(rng);
+      const double radius = size(rng);
+      return ConvexPolytope::fromPoints(generators::prism(3 + (kind(rng) % 4), radius, height));
+    }
     case 2: return ConvexPolytope::fromPoints(generators::box({size(rng), size(rng), size(rng)}));
     default: {
       const double h = size(rng);
-      const Eigen::Vector3d p(unit(rng), unit(rng), 0.0);
+      const double y = unit(rng);
+      const double x = unit(rng);
+      const Eigen::Vector3d p(x, y, 0.0);
       return ConvexPolytope::fromPoints(generators::triangle(p - Eigen::Vector3d(0, 0, h), p + Eigen::Vector3d(0, 0, h),
-                                                             Eigen::Vector3d(unit(rng), unit(rng), unit(rng))));
+                                                             generators::drawVector(unit, rng)));
     }
   }
 }
 
 // A pose near the origin: mostly a rotation about z (vertical edges stay
-// vertical), sometimes any rotation.
+// vertical), sometimes any rotation. The translation is drawn z, y, x: the
+// order GCC evaluated the constructor's arguments (C++ leaves it unspecified),
+// kept so the seeded poses stay as they were.
 Eigen::Isometry3d randomPose(generators::Rng& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Vector3d(2.0 * unit(rng), 2.0 * unit(rng), 0.3 * unit(rng));
+  const double z = 0.3 * unit(rng);
+  const double y = 2.0 * unit(rng);
+  const double x = 2.0 * unit(rng);
+  X.translation() = Eigen::Vector3d(x, y, z);
   X.linear() = unit(rng) > -0.5 ? Eigen::AngleAxisd(M_PI * unit(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix()
                                 : generators::randomRotation(rng);
   return X;
@@ -374,7 +387,10 @@ Eigen::Isometry3d randomPose(generators::Rng& rng) {
 // horizontal.
 Eigen::Vector3d randomDirection(const Eigen::Isometry3d& X_WB, generators::Rng& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Eigen::Vector3d s = -X_WB.translation() + 0.8 * Eigen::Vector3d(unit(rng), unit(rng), 0.0);
+  // y before x, as GCC evaluated the constructor's arguments.
+  const double y = unit(rng);
+  const double x = unit(rng);
+  Eigen::Vector3d s = -X_WB.translation() + 0.8 * Eigen::Vector3d(x, y, 0.0);
   if (unit(rng) > 0.5) s.z() = 0.0;
   return s.squaredNorm() > 1e-6 ? s : Eigen::Vector3d::UnitX();
 }

@@ -58,16 +58,19 @@ void checkPair(const Points& a_pts, const Eigen::Isometry3d& X_WA, const Points&
 /// Random blob pair, B at a random position around A, some overlapping.
 void blobScene(Rng& rng, QueryOracle& oracle, Tally* tally, double scale, const Eigen::Vector3d& offset,
                double dir_length) {
-  const Eigen::Vector3d axes_a(uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0));
-  const Eigen::Vector3d axes_b(uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0), uniform(rng, 0.5, 2.0));
+  const Eigen::Vector3d axes_a = generators::drawVector(std::uniform_real_distribution<double>(0.5, 2.0), rng);
+  const Eigen::Vector3d axes_b = generators::drawVector(std::uniform_real_distribution<double>(0.5, 2.0), rng);
   Points a = generators::blob(uniformInt(rng, 4, 40), axes_a * scale, rng);
   Points b = generators::blob(uniformInt(rng, 4, 40), axes_b * scale, rng);
   const double reach = (axes_a.maxCoeff() + axes_b.maxCoeff()) * scale;
   const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.3 * reach);
   std::vector<Eigen::Vector3d> dirs = aimedDirections(-p_b, 10, rng);
   for (Eigen::Vector3d& d : dirs) d *= dir_length;
-  checkPair(a, pose(generators::randomRotation(rng), offset), b, pose(generators::randomRotation(rng), offset + p_b),
-            dirs, oracle, tally);
+  // B's rotation first: the order GCC evaluated checkPair()'s arguments (C++
+  // leaves it unspecified), kept so the seeded scenes stay as they were.
+  const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
+  const Eigen::Matrix3d R_WA = generators::randomRotation(rng);
+  checkPair(a, pose(R_WA, offset), b, pose(R_WB, offset + p_b), dirs, oracle, tally);
 }
 
 TEST(QueryFamilies, RoundBlobs) {
@@ -94,15 +97,20 @@ TEST(QueryFamilies, BoxesAndPrismsInTheSameOrientation) {
           b = generators::box({uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5), uniform(rng, 0.2, 1.5)});
         } else {
           const int k = uniformInt(rng, 3, 8);
-          a = generators::prism(k, uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 2.0));
-          b = generators::prism(uniformInt(rng, 0, 1) ? k : 2 * k, uniform(rng, 0.3, 1.5), uniform(rng, 0.3, 2.0));
+          randomPrisms(rng, k, &a, &b);
         }
-        const Eigen::Vector3d p_b(uniform(rng, -3, 3), uniform(rng, -3, 3), uniform(rng, -3, 3));
+        const Eigen::Vector3d p_b = generators::drawVector(std::uniform_real_distribution<double>(-3, 3), rng);
         std::vector<Eigen::Vector3d> dirs = aimedDirections(-p_b, 4, rng);
         for (int axis = 0; axis < 3; ++axis) dirs.push_back(R.col(axis) * (uniformInt(rng, 0, 1) ? 1.0 : -1.0));
-        dirs.push_back(R * Eigen::Vector3d(uniform(rng, -1, 1), uniform(rng, -1, 1), 0.0));  // parallel to z faces
-        dirs.push_back(R * Eigen::Vector3d(0.0, uniform(rng, -1, 1), uniform(rng, -1, 1)));  // parallel to x faces
-        dirs.push_back(R * (-p_b).cwiseProduct(Eigen::Vector3d(1, 1, 0)));                   // aimed, in-plane
+        // In-plane directions, the last coordinate drawn first: the order GCC
+        // evaluated the constructors' arguments (C++ leaves it unspecified).
+        const double y1 = uniform(rng, -1, 1);
+        const double x1 = uniform(rng, -1, 1);
+        dirs.push_back(R * Eigen::Vector3d(x1, y1, 0.0));  // parallel to z faces
+        const double z2 = uniform(rng, -1, 1);
+        const double y2 = uniform(rng, -1, 1);
+        dirs.push_back(R * Eigen::Vector3d(0.0, y2, z2));                   // parallel to x faces
+        dirs.push_back(R * (-p_b).cwiseProduct(Eigen::Vector3d(1, 1, 0)));  // aimed, in-plane
         for (auto it = dirs.begin(); it != dirs.end();) it = it->norm() > 0.0 ? it + 1 : dirs.erase(it);
         checkPair(a, pose(R, Eigen::Vector3d::Zero()), b, pose(R, R * p_b), dirs, o, tally);
       },
@@ -117,16 +125,16 @@ TEST(QueryFamilies, IntegerLatticePoints) {
   const Tally t = runFamily(
       600,
       [](Rng& rng, QueryOracle& o, Tally* tally) {
-        const Points a = generators::lattice(uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), 1.0);
-        Points b = generators::lattice(uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), uniformInt(rng, 1, 3), 1.0);
+        const Points a = randomLattice(rng);
+        Points b = randomLattice(rng);
         if (uniformInt(rng, 0, 2) == 0) {  // a lattice tetrahedron-like subset: sloped faces
           b = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2, 0, 0), Eigen::Vector3d(0, 2, 0),
                Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(1, 0, 1)};
         }
-        const Eigen::Vector3d p_b(uniformInt(rng, -3, 3), uniformInt(rng, -3, 3), uniformInt(rng, -3, 3));
+        const Eigen::Vector3d p_b = generators::drawVector(std::uniform_int_distribution<int>(-3, 3), rng);
         std::vector<Eigen::Vector3d> dirs;
         for (int i = 0; i < 10; ++i) {
-          const Eigen::Vector3d d(uniformInt(rng, -2, 2), uniformInt(rng, -2, 2), uniformInt(rng, -2, 2));
+          const Eigen::Vector3d d = generators::drawVector(std::uniform_int_distribution<int>(-2, 2), rng);
           if (d.norm() > 0.0) dirs.push_back(d);
         }
         checkPair(a, Eigen::Isometry3d::Identity(), b, pose(Eigen::Matrix3d::Identity(), p_b), dirs, o, tally);
@@ -153,8 +161,12 @@ TEST(QueryFamilies, NeedlesAndSlabs) {
         const Points a = shape();
         const Points b = shape();
         const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.5);
-        checkPair(a, pose(generators::randomRotation(rng), Eigen::Vector3d::Zero()), b,
-                  pose(generators::randomRotation(rng), p_b), aimedDirections(-p_b, 10, rng), o, tally);
+        // The directions, then B's rotation, then A's: the order GCC evaluated
+        // checkPair()'s arguments (C++ leaves it unspecified).
+        const std::vector<Eigen::Vector3d> dirs = aimedDirections(-p_b, 10, rng);
+        const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
+        const Eigen::Matrix3d R_WA = generators::randomRotation(rng);
+        checkPair(a, pose(R_WA, Eigen::Vector3d::Zero()), b, pose(R_WB, p_b), dirs, o, tally);
       },
       404);
   EXPECT_GE(t.queries, 5000);
@@ -166,10 +178,7 @@ TEST(QueryFamilies, FlatTrianglesAgainstSolidsAndTriangles) {
   const Tally t = runFamily(
       800,
       [](Rng& rng, QueryOracle& o, Tally* tally) {
-        auto tri = [&]() {
-          return generators::triangle(generators::randomUnitVector(rng) * 1.5, generators::randomUnitVector(rng) * 1.5,
-                                      generators::randomUnitVector(rng) * 1.5);
-        };
+        auto tri = [&]() { return randomTriangle(rng, 1.5); };
         const int kind = uniformInt(rng, 0, 3);
         Points a = tri();
         Points b = kind == 0   ? tri()
@@ -208,8 +217,8 @@ TEST(QueryFamilies, ExactlyTouchingPlacements) {
   const Tally t = runFamily(
       600,
       [](Rng& rng, QueryOracle& o, Tally* tally) {
-        const Eigen::Vector3d ha(0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4));
-        const Eigen::Vector3d hb(0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4), 0.5 * uniformInt(rng, 1, 4));
+        const Eigen::Vector3d ha = 0.5 * generators::drawVector(std::uniform_int_distribution<int>(1, 4), rng);
+        const Eigen::Vector3d hb = 0.5 * generators::drawVector(std::uniform_int_distribution<int>(1, 4), rng);
         Eigen::Vector3d p_b;
         for (int i = 0; i < 3; ++i) {
           const int mode = uniformInt(rng, 0, 2);  // 0: overlapping range, 1 / 2: touching on either side
@@ -217,7 +226,7 @@ TEST(QueryFamilies, ExactlyTouchingPlacements) {
         }
         std::vector<Eigen::Vector3d> dirs;
         for (int i = 0; i < 10; ++i) {
-          const Eigen::Vector3d d(uniformInt(rng, -2, 2), uniformInt(rng, -2, 2), uniformInt(rng, -2, 2));
+          const Eigen::Vector3d d = generators::drawVector(std::uniform_int_distribution<int>(-2, 2), rng);
           if (d.norm() > 0.0) dirs.push_back(d);
         }
         const Eigen::Matrix3d R = uniformInt(rng, 0, 1) ? Eigen::Matrix3d::Identity() : generators::randomRotation(rng);
@@ -246,13 +255,19 @@ TEST(QueryFamilies, ParallelFacesPlanarOnlyToRoundOff) {
       300,
       [](Rng& rng, QueryOracle& o, Tally* tally) {
         const double size = uniform(rng, 0.5, 2.0);
-        Points a = uniformInt(rng, 0, 1) == 0
-                       ? generators::box(Eigen::Vector3d(0.5, uniform(rng, 0.2, 0.5), uniform(rng, 0.1, 0.5)) * size)
-                       : generators::prism(uniformInt(rng, 3, 8), 0.5 * size, size);
+        Points a;
+        if (uniformInt(rng, 0, 1) == 0) {
+          // z before y, as GCC evaluated the constructor's arguments.
+          const double z = uniform(rng, 0.1, 0.5);
+          const double y = uniform(rng, 0.2, 0.5);
+          a = generators::box(Eigen::Vector3d(0.5, y, z) * size);
+        } else {
+          a = generators::prism(uniformInt(rng, 3, 8), 0.5 * size, size);
+        }
         const Eigen::Matrix3d R = generators::randomRotation(rng);
         const double jitter = size * std::pow(10.0, uniform(rng, -12.0, -11.0));
         for (Eigen::Vector3d& p : a) {
-          p = R * p + jitter * Eigen::Vector3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+          p = R * p + jitter * generators::drawVector(std::uniform_real_distribution<double>(-1, 1), rng);
         }
         Eigen::Vector3d shift = generators::randomUnitVector(rng) * uniform(rng, 0.0, size);
         if (uniformInt(rng, 0, 1) == 0) shift = R.col(uniformInt(rng, 0, 2)) * (0.25 * size);
@@ -278,7 +293,10 @@ TEST(QueryFamilies, DirectionsParallelToFacesAndAlongAxes) {
         const ConvexPolytope b =
             ConvexPolytope::fromPoints(generators::blob(uniformInt(rng, 5, 25), {0.7, 1, 1.2}, rng));
         const Eigen::Isometry3d X_a = pose(generators::randomRotation(rng), Eigen::Vector3d::Zero());
-        const Eigen::Isometry3d X_b = pose(generators::randomRotation(rng), generators::randomUnitVector(rng) * 1.5);
+        // B's offset before its rotation, as GCC evaluated pose()'s arguments.
+        const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * 1.5;
+        const Eigen::Matrix3d R_b = generators::randomRotation(rng);
+        const Eigen::Isometry3d X_b = pose(R_b, p_b);
         std::vector<Eigen::Vector3d> dirs;
         for (int i = 0; i < 4; ++i) {
           const Eigen::Vector3d na = X_a.linear() * a.faceNormal(uniformInt(rng, 0, a.numFaces() - 1));

@@ -629,11 +629,17 @@ TEST(EnlargePiece, HoldsThePieceGrownByDeltaAndTakesTheCubeForTriangles) {
   const double delta = 0.05;
   for (int k = 0; k < 40; ++k) {
     const bool triangle = k % 2 == 0;
-    const generators::Points points = triangle
-                                          ? generators::triangle(Eigen::Vector3d(coord(rng), coord(rng), coord(rng)),
-                                                                 Eigen::Vector3d(coord(rng), coord(rng), coord(rng)),
-                                                                 Eigen::Vector3d(coord(rng), coord(rng), coord(rng)))
-                                          : generators::blob(12, Eigen::Vector3d(0.5, 0.3, 0.2), rng);
+    generators::Points points;
+    if (triangle) {
+      // The last vertex first: the order GCC evaluated triangle()'s arguments
+      // (C++ leaves it unspecified), kept so the seeded triangles stay.
+      const Eigen::Vector3d v2 = generators::drawVector(coord, rng);
+      const Eigen::Vector3d v1 = generators::drawVector(coord, rng);
+      const Eigen::Vector3d v0 = generators::drawVector(coord, rng);
+      points = generators::triangle(v0, v1, v2);
+    } else {
+      points = generators::blob(12, Eigen::Vector3d(0.5, 0.3, 0.2), rng);
+    }
     const scene::Piece piece =
         scene::Piece::make(ConvexPolytope::fromPoints(points), scene::PieceKind::kConvex, "piece " + std::to_string(k));
     ASSERT_EQ(piece.polytope.numVertices() == 3, triangle) << "piece " << k;

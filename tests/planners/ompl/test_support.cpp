@@ -190,8 +190,13 @@ std::vector<examples::ExampleScene> fileScenes(std::uint64_t s) {
   // (a) URDF primitives: boxes, cylinders and spheres at random poses.
   std::vector<std::string> obstacles;
   for (int i = 0; i < 45; ++i) {
-    const Eigen::Vector3d p(u(0, 10), u(0, 10), u(0, 10));
-    const Eigen::Vector3d rpy(u(-3, 3), u(-1.5, 1.5), u(-3, 3));
+    const Eigen::Vector3d p = generators::drawVector(std::uniform_real_distribution<double>(0, 10), rng);
+    // yaw, pitch, roll: the order GCC evaluated the constructor's arguments
+    // (C++ leaves it unspecified), kept so the seeded scenes stay as they were.
+    const double yaw = u(-3, 3);
+    const double pitch = u(-1.5, 1.5);
+    const double roll = u(-3, 3);
+    const Eigen::Vector3d rpy(roll, pitch, yaw);
     std::ostringstream g;
     if (i % 3 == 0) {
       g << "<geometry><box size=\"" << u(0.3, 1.8) << " " << u(0.3, 1.8) << " " << u(0.3, 1.8) << "\"/></geometry>";
@@ -221,7 +226,7 @@ std::vector<examples::ExampleScene> fileScenes(std::uint64_t s) {
   for (int i = 0; i < 25; ++i) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.linear() = generators::randomRotation(rng);
-    X.translation() = Eigen::Vector3d(u(0, 10), u(0, 10), u(0, 10));
+    X.translation() = generators::drawVector(std::uniform_real_distribution<double>(0, 10), rng);
     poses.push_back(X);
   }
   writeFile(dir / "world.obj", lPrismsObj(poses, 1.2));
@@ -250,16 +255,23 @@ std::string sceneName(int index) {
 void randomState(const PlanningSpace& space, Rng& rng, ob::State* state) {
   const Eigen::AlignedBox3d& b = space.bounds();
   auto u = [&](int k) { return std::uniform_real_distribution<double>(b.min()[k], b.max()[k])(rng); };
+  // Coordinates drawn last first: the order GCC evaluated the setters'
+  // arguments (C++ leaves it unspecified), kept so seeded states stay.
   switch (space.kind()) {
     case SpaceKind::kSE2: {
       auto* s = state->as<ob::SE2StateSpace::StateType>();
-      s->setXY(u(0), u(1));
+      const double y = u(1);
+      const double x = u(0);
+      s->setXY(x, y);
       s->setYaw(-std::uniform_real_distribution<double>(-kPi, kPi)(rng));  // (-pi, pi]
       break;
     }
     case SpaceKind::kSE3: {
       auto* s = state->as<ob::SE3StateSpace::StateType>();
-      s->setXYZ(u(0), u(1), u(2));
+      const double z = u(2);
+      const double y = u(1);
+      const double x = u(0);
+      s->setXYZ(x, y, z);
       const Eigen::Quaterniond q(generators::randomRotation(rng));
       s->rotation().x = q.x();
       s->rotation().y = q.y();
@@ -298,10 +310,10 @@ void randomEdgeEnd(const PlanningSpace& space, const ob::State* s1, double max_l
             .toRotationMatrix() *
         X.linear();
   } else if (rotate && space.kind() == SpaceKind::kSE3) {
-    X.linear() = Eigen::AngleAxisd(std::uniform_real_distribution<double>(0.0, max_angle)(rng),
-                                   generators::randomUnitVector(rng))
-                     .toRotationMatrix() *
-                 X.linear();
+    // The axis before the angle, as GCC evaluated the constructor's arguments.
+    const Eigen::Vector3d axis = generators::randomUnitVector(rng);
+    const double angle = std::uniform_real_distribution<double>(0.0, max_angle)(rng);
+    X.linear() = Eigen::AngleAxisd(angle, axis).toRotationMatrix() * X.linear();
   }
   space.stateSpace()->copyState(s2, s1);
   space.setPose(X, s2);

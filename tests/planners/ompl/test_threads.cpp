@@ -49,8 +49,12 @@ Workload makeWorkload(const Fixture& fx, int states, int edges, std::uint64_t se
   for (int i = 0; i < states; ++i) {
     w.states.emplace_back(fx.space->stateSpace());
     testing::randomState(*fx.space, rng, w.states.back().get());
-    Eigen::Vector3d d(std::normal_distribution<double>()(rng), std::normal_distribution<double>()(rng),
-                      fx.space->kind() == SpaceKind::kSE2 ? 0.0 : std::normal_distribution<double>()(rng));
+    // z (unless planar), y, x: the order GCC evaluated the constructor's
+    // arguments (C++ leaves it unspecified), kept so seeded workloads stay.
+    const double z = fx.space->kind() == SpaceKind::kSE2 ? 0.0 : std::normal_distribution<double>()(rng);
+    const double y = std::normal_distribution<double>()(rng);
+    const double x = std::normal_distribution<double>()(rng);
+    Eigen::Vector3d d(x, y, z);
     w.directions.push_back(d);
   }
   const double extent = (fx.space->bounds().max() - fx.space->bounds().min()).head<2>().norm();

@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 
+#include "mddual/generators.h"
 #include "mddual/scene/loaders.h"
 #include "scene_detail.h"
 #include "scene_test_util.h"
@@ -261,7 +262,7 @@ std::string prismRock(std::mt19937* rng, int sides, double height, double noise,
   vertices->clear();
   for (const double z : {0.0, height}) {
     for (const double a : angles) {
-      const Eigen::Vector3d d(u(*rng), u(*rng), u(*rng));
+      const Eigen::Vector3d d = generators::drawVector(u, *rng);
       vertices->push_back(Eigen::Vector3d(std::cos(a), std::sin(a), z) + noise * d.normalized());
     }
   }
@@ -388,7 +389,7 @@ TEST(MeshConvexity, LargeNearlyCoplanarClosedMeshLoadsAsItsHull) {
     if (inserted) {
       Eigen::Vector3d p;
       for (int a = 0; a < 3; ++a) p[a] = h[a] * static_cast<double>(k[a]) / steps[a];
-      vertices.push_back(R * (p + amplitude * Eigen::Vector3d(noise(rng), noise(rng), noise(rng))));
+      vertices.push_back(R * (p + amplitude * generators::drawVector(noise, rng)));
     }
     return it->second;
   };

@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "mddual/generators.h"
 #include "mddual/scene/loaders.h"
 #include "scene_test_util.h"
 
@@ -90,7 +91,7 @@ TEST(Primitives, SphereContainsTheTrueSurfaceWithinTolerance) {
     for (const double tol : {2e-2, 2e-3}) {
       const Piece p = spherePiece(r, X, tol, "sphere");
       for (int i = 0; i < 2000; ++i) {
-        const Eigen::Vector3d dir = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+        const Eigen::Vector3d dir = generators::drawVector(g, rng).normalized();
         EXPECT_LE(outside(p.polytope, X * (r * dir)), 1e-11 * r) << "surface point outside, r " << r;
       }
       for (const Eigen::Vector3d& v : p.polytope.vertices()) {

@@ -8,6 +8,7 @@
 #include <functional>
 #include <random>
 
+#include "mddual/generators.h"
 #include "mddual/scene/loaders.h"
 #include "mddual/scene/scene.h"
 
@@ -17,8 +18,8 @@ namespace {
 Eigen::AlignedBox3d randomBox(std::mt19937_64& rng, double extent, double max_size) {
   std::uniform_real_distribution<double> pos(-extent, extent);
   std::uniform_real_distribution<double> size(0.0, max_size);
-  const Eigen::Vector3d lo(pos(rng), pos(rng), pos(rng));
-  return Eigen::AlignedBox3d(lo, lo + Eigen::Vector3d(size(rng), size(rng), size(rng)));
+  const Eigen::Vector3d lo = generators::drawVector(pos, rng);
+  return Eigen::AlignedBox3d(lo, lo + generators::drawVector(size, rng));
 }
 
 TEST(AabbTree, QueryMatchesBruteForceOnRandomBoxes) {
@@ -70,8 +71,14 @@ TEST(TransformedBox, ContainsThePosedCornersAndIsTight) {
   for (int trial = 0; trial < 200; ++trial) {
     const Eigen::AlignedBox3d box = randomBox(rng, 5.0, 3.0);
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.linear() = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
-    X.translation() = Eigen::Vector3d(u(rng), u(rng), u(rng)) * 10.0;
+    // z, y, x, w: the order GCC evaluated the constructor's arguments (C++
+    // leaves it unspecified), kept so the seeded poses stay as they were.
+    const double z = u(rng);
+    const double y = u(rng);
+    const double x = u(rng);
+    const double w = u(rng);
+    X.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+    X.translation() = generators::drawVector(u, rng) * 10.0;
     const Eigen::AlignedBox3d out = transformedBox(box, X);
     Eigen::AlignedBox3d corners_box;
     corners_box.setEmpty();
@@ -104,13 +111,21 @@ Eigen::Isometry3d randomPose(std::mt19937_64& rng, double extent) {
   std::uniform_real_distribution<double> angle(-3.0, 3.0);
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation() << pos(rng), pos(rng), pos(rng);
-  X.linear() = Eigen::AngleAxisd(angle(rng), Eigen::Vector3d(pos(rng), pos(rng), 1.0).normalized()).toRotationMatrix();
+  // The axis (y before x) before the angle: the order GCC evaluated the
+  // constructors' arguments (C++ leaves it unspecified), kept so seeded poses stay.
+  const double y = pos(rng);
+  const double x = pos(rng);
+  const Eigen::Vector3d axis = Eigen::Vector3d(x, y, 1.0).normalized();
+  X.linear() = Eigen::AngleAxisd(angle(rng), axis).toRotationMatrix();
   return X;
 }
 
 Piece randomBoxPiece(std::mt19937_64& rng, const std::string& origin) {
   std::uniform_real_distribution<double> size(0.1, 2.0);
-  return boxPiece(Eigen::Vector3d(size(rng), size(rng), size(rng)), randomPose(rng, 10.0), origin);
+  // The pose before the size, as GCC evaluated boxPiece()'s arguments.
+  const Eigen::Isometry3d X = randomPose(rng, 10.0);
+  const Eigen::Vector3d sides = generators::drawVector(size, rng);
+  return boxPiece(sides, X, origin);
 }
 
 /// The indices whose boxes meet `query`, sorted.

@@ -24,6 +24,16 @@ inline Eigen::Isometry3d pose(const Eigen::Matrix3d& R, const Eigen::Vector3d& p
   return X;
 }
 
+/// A random direction times a length uniform in [0, max_length], the length
+/// drawn first: the order GCC evaluated the operands of the
+/// `randomUnitVector(rng) * uniform(rng, 0.0, max_length)` this replaces (C++
+/// leaves the operands of an overloaded `*` unsequenced; Clang goes left to
+/// right), kept so the seeded offsets stay as they were.
+inline Eigen::Vector3d randomOffset(generators::Rng& rng, double max_length) {
+  const double length = uniform(rng, 0.0, max_length);
+  return generators::randomUnitVector(rng) * length;
+}
+
 /// A triangle of three random unit vectors times `scale`, the last vertex drawn
 /// first: the order GCC evaluated the arguments of the `triangle(
 /// randomUnitVector(rng) * scale, ...)` calls this replaces (C++ leaves it

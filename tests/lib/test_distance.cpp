@@ -393,7 +393,10 @@ TEST(Distance, FarFromOrigin) {
   Rng rng(seed(505));
   Tally t;
   for (int i = 0; i < samples(200) && !HasFailure(); ++i) {
-    const Eigen::Vector3d far = std::pow(10.0, uniform(rng, 3.0, 6.0)) * generators::randomUnitVector(rng);
+    // The direction before the distance: the order GCC evaluated the operands
+    // of the product (C++ leaves them unsequenced), kept so the samples stay.
+    const Eigen::Vector3d direction = generators::randomUnitVector(rng);
+    const Eigen::Vector3d far = std::pow(10.0, uniform(rng, 3.0, 6.0)) * direction;
     const Eigen::Vector3d rel = generators::drawVector(std::uniform_real_distribution<double>(-4.0, 4.0), rng);
     const ConvexPolytope a = ConvexPolytope::fromPoints(shifted(randomBlob(rng, 1.0), far));
     const ConvexPolytope b = ConvexPolytope::fromPoints(shifted(randomBlob(rng, 1.0), far + rel));

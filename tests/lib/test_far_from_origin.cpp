@@ -87,7 +87,7 @@ FarPair blobs(Rng& rng, double size) {
   FarPair p;
   p.a = generators::blob(uniformInt(rng, 4, 30), Eigen::Vector3d(1.0, 0.7, 0.5) * size, rng);
   p.b = generators::blob(uniformInt(rng, 4, 30), Eigen::Vector3d(0.6, 0.9, 0.8) * size, rng);
-  const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 2.0 * size);
+  const Eigen::Vector3d p_b = randomOffset(rng, 2.0 * size);
   p.X_WA = pose(generators::randomRotation(rng), Eigen::Vector3d::Zero());
   p.X_WB = pose(generators::randomRotation(rng), p_b);
   p.directions = mixedDirections(-p_b, 8, rng);
@@ -108,8 +108,7 @@ FarPair identical(Rng& rng, double size) {
                 Eigen::Vector3d::Zero());
   p.X_WB = p.X_WA;
   if (uniformInt(rng, 0, 1) == 1) {
-    p.X_WB.pretranslate(uniformInt(rng, 0, 1) ? Eigen::Vector3d(0.25 * size, 0.0, 0.0)
-                                              : generators::randomUnitVector(rng) * uniform(rng, 0.0, size));
+    p.X_WB.pretranslate(uniformInt(rng, 0, 1) ? Eigen::Vector3d(0.25 * size, 0.0, 0.0) : randomOffset(rng, size));
   }
   p.directions = mixedDirections(Eigen::Vector3d::UnitX(), 8, rng);
   return p;
@@ -145,7 +144,7 @@ FarPair flatTriangles(Rng& rng, double size) {
     case 1: p.b = generators::box(Eigen::Vector3d(0.3, 0.4, 0.2) * size); break;
     default: p.b = generators::blob(10, Eigen::Vector3d(0.5, 0.4, 0.4) * size, rng); break;
   }
-  const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.5 * size);
+  const Eigen::Vector3d p_b = randomOffset(rng, 1.5 * size);
   p.X_WB = pose(generators::randomRotation(rng), p_b);
   p.directions = mixedDirections(-p_b, 8, rng);
   return p;

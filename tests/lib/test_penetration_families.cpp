@@ -60,7 +60,7 @@ void blobScene(Rng& rng, PdOracle& o, PdTally* tally, double scale, const Eigen:
   const Points a = generators::blob(uniformInt(rng, 4, 40), axes_a * scale, rng);
   const Points b = generators::blob(uniformInt(rng, 4, 40), axes_b * scale, rng);
   const double reach = (axes_a.minCoeff() + axes_b.minCoeff()) * scale;
-  const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.3 * reach);
+  const Eigen::Vector3d p_b = randomOffset(rng, 1.3 * reach);
   // B's rotation first: the order GCC evaluated checkPair()'s arguments (C++
   // leaves it unspecified), kept so the seeded scenes stay as they were.
   const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
@@ -136,7 +136,7 @@ TEST(PenetrationFamilies, NeedlesAndSlabs) {
         };
         const Points a = shape();
         const Points b = shape();
-        const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 0.7);
+        const Eigen::Vector3d p_b = randomOffset(rng, 0.7);
         // B's rotation first, as GCC evaluated checkPair()'s arguments.
         const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
         const Eigen::Matrix3d R_WA = generators::randomRotation(rng);
@@ -160,7 +160,7 @@ TEST(PenetrationFamilies, FlatTrianglesAgainstSolidsAndTriangles) {
                    : kind == 1 ? generators::box({0.5, 0.7, 0.4})
                                : generators::blob(12, {0.8, 0.6, 0.7}, rng);
         Eigen::Matrix3d R_b = generators::randomRotation(rng);
-        Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.2);
+        Eigen::Vector3d p_b = randomOffset(rng, 1.2);
         if (kind == 3) {  // parallel triangles: a flat M
           a = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1.5, 0.2, 0), Eigen::Vector3d(0.3, 1.4, 0)};
           b = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-1.2, 0.5, 0), Eigen::Vector3d(0.4, -1.1, 0)};
@@ -215,7 +215,7 @@ TEST(PenetrationFamilies, DeepPenetration) {
         const Points a = uniformInt(rng, 0, 1) ? generators::blob(uniformInt(rng, 6, 40), {1.0, 1.4, 0.8}, rng)
                                                : generators::box({1.0, 0.6, 1.3});
         const Points b = generators::blob(uniformInt(rng, 6, 40), Eigen::Vector3d(0.9, 0.7, 1.1) * size_b, rng);
-        const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 0.1);
+        const Eigen::Vector3d p_b = randomOffset(rng, 0.1);
         // B's rotation first, as GCC evaluated checkPair()'s arguments.
         const Eigen::Matrix3d R_WB = generators::randomRotation(rng);
         const Eigen::Matrix3d R_WA = generators::randomRotation(rng);

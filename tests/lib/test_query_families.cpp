@@ -63,7 +63,7 @@ void blobScene(Rng& rng, QueryOracle& oracle, Tally* tally, double scale, const 
   Points a = generators::blob(uniformInt(rng, 4, 40), axes_a * scale, rng);
   Points b = generators::blob(uniformInt(rng, 4, 40), axes_b * scale, rng);
   const double reach = (axes_a.maxCoeff() + axes_b.maxCoeff()) * scale;
-  const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.3 * reach);
+  const Eigen::Vector3d p_b = randomOffset(rng, 1.3 * reach);
   std::vector<Eigen::Vector3d> dirs = aimedDirections(-p_b, 10, rng);
   for (Eigen::Vector3d& d : dirs) d *= dir_length;
   // B's rotation first: the order GCC evaluated checkPair()'s arguments (C++
@@ -160,7 +160,7 @@ TEST(QueryFamilies, NeedlesAndSlabs) {
         };
         const Points a = shape();
         const Points b = shape();
-        const Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 1.5);
+        const Eigen::Vector3d p_b = randomOffset(rng, 1.5);
         // The directions, then B's rotation, then A's: the order GCC evaluated
         // checkPair()'s arguments (C++ leaves it unspecified).
         const std::vector<Eigen::Vector3d> dirs = aimedDirections(-p_b, 10, rng);
@@ -192,7 +192,7 @@ TEST(QueryFamilies, FlatTrianglesAgainstSolidsAndTriangles) {
           R_b = Eigen::AngleAxisd(uniform(rng, 0, 6.28), Eigen::Vector3d::UnitZ()).toRotationMatrix();
         }
         const bool swap = uniformInt(rng, 0, 1) == 1 && kind != 3;
-        Eigen::Vector3d p_b = generators::randomUnitVector(rng) * uniform(rng, 0.0, 2.5);
+        Eigen::Vector3d p_b = randomOffset(rng, 2.5);
         if (kind == 3) p_b.z() = uniformInt(rng, 0, 2) == 0 ? 0.0 : p_b.z();
         std::vector<Eigen::Vector3d> dirs = aimedDirections(-p_b, 8, rng);
         if (kind == 3) dirs.push_back(Eigen::Vector3d(-p_b.x(), -p_b.y(), 0.0) + Eigen::Vector3d(0.1, 0.0, 0.0));
@@ -269,7 +269,7 @@ TEST(QueryFamilies, ParallelFacesPlanarOnlyToRoundOff) {
         for (Eigen::Vector3d& p : a) {
           p = R * p + jitter * generators::drawVector(std::uniform_real_distribution<double>(-1, 1), rng);
         }
-        Eigen::Vector3d shift = generators::randomUnitVector(rng) * uniform(rng, 0.0, size);
+        Eigen::Vector3d shift = randomOffset(rng, size);
         if (uniformInt(rng, 0, 1) == 0) shift = R.col(uniformInt(rng, 0, 2)) * (0.25 * size);
         Points b = a;
         for (Eigen::Vector3d& p : b) p += shift;

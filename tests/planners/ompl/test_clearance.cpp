@@ -79,7 +79,10 @@ TEST_P(Clearance, MatchesTheBruteForce) {
   int hits = 0, colliding = 0;
   for (int i = 0; i < n; ++i) {
     testing::randomState(*fx.space, rng, s.get());
-    Eigen::Vector3d d = generators::randomUnitVector(rng) * std::uniform_real_distribution<double>(0.1, 10.0)(rng);
+    // The length before the direction: the order GCC evaluated the operands of
+    // the product (C++ leaves them unsequenced), kept so the samples stay.
+    const double length = std::uniform_real_distribution<double>(0.1, 10.0)(rng);
+    Eigen::Vector3d d = generators::randomUnitVector(rng) * length;
     if (fx.space->kind() == SpaceKind::kSE2) d.z() = 0.0;
     const Eigen::Isometry3d X = fx.space->pose(s.get());
     const DirectedClearance c = directedClearance(*fx.mdd, *fx.space, s.get(), d);

@@ -151,7 +151,10 @@ EdgeMotion randomStart(const examples::ExampleScene& scene, const MddScene& mdd,
 /// rotation by up to pi about a random axis.
 EdgeMotion randomRotatingEdge(const examples::ExampleScene& scene, const MddScene& mdd, testing::Rng& rng) {
   EdgeMotion m = randomStart(scene, mdd, rng);
-  m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, 4.0)(rng) * generators::randomUnitVector(rng);
+  // The direction before the length: the order GCC evaluated the operands of
+  // the product (C++ leaves them unsequenced), kept so the seeded edges stay.
+  const Eigen::Vector3d direction = generators::randomUnitVector(rng);
+  m.p_end = m.p_start + std::uniform_real_distribution<double>(0.0, 4.0)(rng) * direction;
   m.axis_R = generators::randomUnitVector(rng);
   m.angle = std::uniform_real_distribution<double>(0.0, kPi)(rng);
   m.X_end = m.pose(1.0);
@@ -373,8 +376,9 @@ TEST(MddSceneTranslation, LastValidWithAToleranceBracketsTheExactContact) {
       // start must be reported as colliding).
       EdgeMotion m = randomStart(scene, mdd, rng, e % 5 == 4);
       const Eigen::Isometry3d X = m.pose(0.0);
-      const Eigen::Vector3d v_W =
-          std::uniform_real_distribution<double>(0.5, 6.0)(rng) * generators::randomUnitVector(rng);
+      // The direction before the length, as GCC evaluated the product.
+      const Eigen::Vector3d direction = generators::randomUnitVector(rng);
+      const Eigen::Vector3d v_W = std::uniform_real_distribution<double>(0.5, 6.0)(rng) * direction;
       m.p_end = m.p_start + v_W;
       m.X_end = m.pose(1.0);
       const double exact = pairLoopSweep(mdd, 0, X, v_W, v_W.norm()) / v_W.norm();

@@ -140,7 +140,10 @@ TEST(PartSweep, HoldsTheRotatedPartAndTakesTheSmallerGrowth) {
       // otherwise; within rho of the origin (drawn again until it is).
       Eigen::Vector3d y;
       do {
-        y = generators::randomUnitVector(rng) * radius * (m % 4 == 0 ? unit(rng) : 1.0);
+        // The factor before the direction: the order GCC evaluated the
+        // product's operands (C++ leaves them unsequenced).
+        const double factor = m % 4 == 0 ? unit(rng) : 1.0;
+        y = generators::randomUnitVector(rng) * radius * factor;
       } while ((centre_R + y).norm() > rho);
       // The interval's ends a quarter of the time (where the chord's error peaks).
       const double s = m % 4 == 1 ? 0.0 : m % 4 == 2 ? 1.0 : unit(rng);

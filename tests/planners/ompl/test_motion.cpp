@@ -8,6 +8,7 @@
 
 #include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -304,14 +305,16 @@ TEST_F(LastValid, CountersCountEveryCheck) {
   EXPECT_EQ(fx.mdd_motion->counts().motion_checks, 0u);
 }
 
-// A planner that drops every lastValid at or below a fraction (KPIECE's
-// min_valid_path_fraction): with the shortcut on, each of its decisions on
-// random rotating edges (valid; kept part; dropped) is the one it makes
-// without, and the shortcut's answer is (s1, 0) only where the state at the
-// fraction collides. Scenes: mesh (SE(3)), planar (SE(2)), trap (SE(3)).
+// A planner that drops every lastValid at or below a fraction (the
+// min_valid_path_fraction of KPIECE and STRIDE, 0.2 by default, and of BKPIECE
+// and LBKPIECE, 0.5): with the shortcut on, each of its decisions on random
+// rotating edges (valid; kept part; dropped) is the one it makes without, and
+// the shortcut's answer is (s1, 0) only where the state at the fraction
+// collides. Scenes: mesh (SE(3)), planar (SE(2)), trap (SE(3)).
 TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
-  const double f = 0.2;
-  int shortcuts = 0, kept = 0, invalid = 0, edges = 0;
+  const std::array<double, 2> fractions{0.2, 0.5};
+  std::array<int, 2> shortcuts{0, 0}, kept{0, 0};
+  int invalid = 0, edges = 0;
   for (const int index : {1, 2, 8}) {
     const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(index)];
     const Fixture fx = testing::makeFixture(scene);
@@ -324,12 +327,9 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
       testing::randomEdgeEnd(*fx.space, s1.get(), (i % 2 == 0 ? 0.1 : 0.3) * extent, true, kPi, rng, s2.get());
       const std::string where =
           scene.name + " edge " + std::to_string(i) + ": " + testing::edgeString(fx, s1.get(), s2.get());
-      std::pair<ob::State*, double> off(last_off.get(), -1.0), on(last_on.get(), -1.0);
+      std::pair<ob::State*, double> off(last_off.get(), -1.0);
       fx.mdd_motion->setDiscardedLastValidFraction(0.0);
       const bool valid_off = fx.mdd_motion->checkMotion(s1.get(), s2.get(), off);
-      fx.mdd_motion->setDiscardedLastValidFraction(f);
-      const bool valid_on = fx.mdd_motion->checkMotion(s1.get(), s2.get(), on);
-      fx.mdd_motion->setDiscardedLastValidFraction(0.0);
       // As KPIECE1 calls it: lastValid.first is the end state itself.
       ob::ScopedState<> s2_alias(s2);
       std::pair<ob::State*, double> alias(s2_alias.get(), -1.0);
@@ -339,26 +339,37 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
         EXPECT_EQ(s2_alias, last_off) << where;
       }
       ++edges;
-      ASSERT_EQ(valid_on, valid_off) << where;
-      if (valid_on) continue;
-      ++invalid;
-      EXPECT_EQ(on.second > f, off.second > f) << where << " lastValid " << on.second << " / " << off.second;
-      const bool collides_at_f = fx.mdd->collides(fx.space->motion(s1.get(), s2.get()).pose(f));
-      if (collides_at_f) {
-        ++shortcuts;
-        EXPECT_EQ(on.second, 0.0) << where;
-        EXPECT_EQ(last_on, s1) << where;
-      } else {
-        EXPECT_EQ(on.second, off.second) << where;
-        EXPECT_EQ(last_on, last_off) << where;
+      invalid += valid_off ? 0 : 1;
+      for (std::size_t k = 0; k < fractions.size(); ++k) {
+        const double f = fractions[k];
+        std::pair<ob::State*, double> on(last_on.get(), -1.0);
+        fx.mdd_motion->setDiscardedLastValidFraction(f);
+        const bool valid_on = fx.mdd_motion->checkMotion(s1.get(), s2.get(), on);
+        fx.mdd_motion->setDiscardedLastValidFraction(0.0);
+        ASSERT_EQ(valid_on, valid_off) << where << " fraction " << f;
+        if (valid_on) continue;
+        EXPECT_EQ(on.second > f, off.second > f)
+            << where << " fraction " << f << " lastValid " << on.second << " / " << off.second;
+        const bool collides_at_f = fx.mdd->collides(fx.space->motion(s1.get(), s2.get()).pose(f));
+        if (collides_at_f) {
+          ++shortcuts[k];
+          EXPECT_EQ(on.second, 0.0) << where << " fraction " << f;
+          EXPECT_EQ(last_on, s1) << where << " fraction " << f;
+        } else {
+          EXPECT_EQ(on.second, off.second) << where << " fraction " << f;
+          EXPECT_EQ(last_on, last_off) << where << " fraction " << f;
+        }
+        kept[k] += off.second > f;
       }
-      kept += off.second > f;
     }
   }
-  std::printf("%d edges, %d invalid: %d shortcuts, %d kept parts\n", edges, invalid, shortcuts, kept);
-  // Not a degenerate sample: both kinds of invalid edge.
-  EXPECT_GT(shortcuts, invalid / 10);
-  EXPECT_GT(kept, invalid / 10);
+  for (std::size_t k = 0; k < fractions.size(); ++k) {
+    std::printf("fraction %.1f: %d edges, %d invalid: %d shortcuts, %d kept parts\n", fractions[k], edges, invalid,
+                shortcuts[k], kept[k]);
+    // Not a degenerate sample: both kinds of invalid edge.
+    EXPECT_GT(shortcuts[k], invalid / 10) << "fraction " << fractions[k];
+    EXPECT_GT(kept[k], invalid / 10) << "fraction " << fractions[k];
+  }
 }
 
 TEST(LastValidDiscard, FractionOutsideZeroToOneIsRefused) {

@@ -93,9 +93,10 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     exists (or f = 0: the start collides or is out of bounds), lastValid =
 ///     (copy of s1, 0). On a valid edge lastValid is not touched. With
 ///     setDiscardedLastValidFraction(d) > 0 (for a planner that drops every
-///     lastValid at or below d, KPIECE), a rotating edge whose state at d
-///     collides gets (copy of s1, 0) at once: what the planner does with it
-///     is what it does with f - b, which is then at most d too.
+///     lastValid at or below d: KPIECE, BKPIECE, LBKPIECE, STRIDE), a rotating
+///     edge whose state at d collides gets (copy of s1, 0) at once: what the
+///     planner does with it is what it does with f - b, which is then at most
+///     d too.
 ///   - s1 is not assumed valid: an edge whose start collides is invalid.
 ///   - checkMotion(s1, s2) (validity only) first tests s2, the middle state
 ///     and, on rotating edges, the quarters (mddual::intersect,
@@ -131,16 +132,13 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   const PlanningSpace& planningSpace() const { return *space_; }
 
   /// For a planner that drops every partial motion whose lastValid.second
-  /// is at most `fraction` (KPIECE: its min_valid_path_fraction, 0.2 by
-  /// default): checkMotion(s1, s2, lastValid) on a rotating edge first tests
-  /// the state at that fraction, and when it collides returns lastValid =
-  /// (copy of s1, 0) without searching for the first contact. The planner
-  /// decides as it would have: the first contact is before that state, so
-  /// the true bound would be at most `fraction` too. The contract above
-  /// holds ((s1, 0) as for a colliding start; the verdict is the same). 0,
-  /// the default, turns it off; translation edges never take it (their exact
-  /// sweep costs about what the state test costs). Throws InvalidInputError
-  /// outside [0, 1]. Set it between planner runs, not during one.
+  /// is at most `fraction` (KPIECE1, BKPIECE1, LBKPIECE1, STRIDE: their
+  /// min_valid_path_fraction, see discardedLastValidFraction): checkMotion(s1, s2, lastValid) on a rotating edge first
+  /// tests the state at that fraction, and when it collides returns lastValid = (copy of s1, 0) without searching for
+  /// the first contact. The planner decides as it would have: the first contact is before that state, so the true bound
+  /// would be at most `fraction` too. The contract above holds ((s1, 0) as for a colliding start; the verdict is the
+  /// same). 0, the default, turns it off; translation edges never take it (their exact sweep costs about what the state
+  /// test costs). Throws InvalidInputError outside [0, 1]. Set it between planner runs, not during one.
   void setDiscardedLastValidFraction(double fraction);
   double discardedLastValidFraction() const { return discarded_fraction_.load(std::memory_order_relaxed); }
 

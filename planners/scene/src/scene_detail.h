@@ -143,7 +143,8 @@ struct XmlDepth {
 XmlDepth xmlElementDepth(std::string_view text, int limit = kMaxXmlElementDepth);
 
 /// Throws SceneError (naming the file, the depth and the line) when `file`
-/// nests its elements deeper than kMaxXmlElementDepth, or cannot be read.
-void requireShallowXml(const std::filesystem::path& file);
+/// nests its elements deeper than kMaxXmlElementDepth, or cannot be read;
+/// returns the file's text otherwise.
+std::string requireShallowXml(const std::filesystem::path& file);
 
 }  // namespace mddual::scene::detail

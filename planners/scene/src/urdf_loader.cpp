@@ -7,6 +7,7 @@
 #include <cctype>
 #include <mutex>
 #include <sstream>
+#include <string>
 
 #include "mddual/scene/loaders.h"
 #include "scene_detail.h"
@@ -36,7 +37,18 @@ std::mutex& parseMutex() {
   return m;
 }
 
-urdf::ModelInterfaceSharedPtr parse(const std::filesystem::path& file) {
+/// NUL bytes after the text handed to urdfdom. Its parser (TinyXML 2.6)
+/// steps over a UTF-8 character by the length its lead byte announces, so a
+/// file ending in a truncated multi-byte character (a lead byte 0xC0-0xFF and
+/// fewer continuation bytes) made it step past the string's terminator and
+/// read beyond the buffer (found by fuzz_urdf; fuzz/findings/
+/// urdf-truncated-utf8). A lead byte announces at most 4 bytes, so after 4
+/// more NULs every such step still lands on a NUL inside the string.
+constexpr std::size_t kXmlParserPadding = 4;
+
+/// `xml` is the text of `file` (read once, by requireShallowXml).
+urdf::ModelInterfaceSharedPtr parse(const std::filesystem::path& file, std::string xml) {
+  xml.append(kXmlParserPadding, '\0');
   std::lock_guard<std::mutex> lock(parseMutex());
   CaptureHandler capture;
   console_bridge::OutputHandler* previous = console_bridge::getOutputHandler();
@@ -44,7 +56,7 @@ urdf::ModelInterfaceSharedPtr parse(const std::filesystem::path& file) {
   urdf::ModelInterfaceSharedPtr model;
   std::string exception;
   try {
-    model = urdf::parseURDFFile(file.string());
+    model = urdf::parseURDF(xml);
   } catch (const std::exception& e) {
     exception = e.what();
   }
@@ -158,8 +170,8 @@ std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptio
                               std::vector<std::string>* warnings, MeshCounts* counts) {
   requireFile(file);
   requirePositiveTolerance(options.primitive_tolerance, display(file));
-  requireShallowXml(file);  // urdfdom's XML parser recurses once per nesting level
-  const urdf::ModelInterfaceSharedPtr model = parse(file);
+  // urdfdom's XML parser recurses once per nesting level: checked first.
+  const urdf::ModelInterfaceSharedPtr model = parse(file, requireShallowXml(file));
   if (robot_name != nullptr) *robot_name = model->getName();
   const urdf::LinkConstSharedPtr root = model->getRoot();
   if (!root) throw SceneError(display(file) + ": no root link");

@@ -107,7 +107,7 @@ XmlDepth xmlElementDepth(std::string_view text, int limit) {
   return deepest;
 }
 
-void requireShallowXml(const std::filesystem::path& file) {
+std::string requireShallowXml(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
@@ -118,6 +118,7 @@ void requireShallowXml(const std::filesystem::path& file) {
                      std::to_string(kMaxXmlElementDepth) + " deep (the most this loader reads: its XML parser " +
                      "recurses once per level; real files nest about ten deep)");
   }
+  return text.str();
 }
 
 bool isXmlMesh(const std::filesystem::path& file) {

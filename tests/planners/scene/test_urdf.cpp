@@ -175,6 +175,30 @@ TEST(UrdfErrors, PathologicalNestingIsRefusedBeforeParsing) {
   EXPECT_EQ(loadBody(dir.write("commented.urdf", commented)).pieces().size(), 1u);
 }
 
+// fuzz_urdf: a file ending in a truncated UTF-8 character made urdfdom's
+// parser (TinyXML 2.6) step past the text's terminator and read beyond the
+// buffer (ASan: heap-buffer-overflow in TiXmlBase::GetEntity). The loader pads
+// the text; such a file is a clear error, and UTF-8 names still load.
+TEST(UrdfErrors, TruncatedUtf8AtTheEndIsAnErrorNotAnOverread) {
+  TempDir dir;
+  // The fuzzer's input (fuzz/findings/urdf-truncated-utf8), then the other
+  // lead bytes at the very end, inside an attribute and after a tag.
+  std::string found = "<?xml version=\"1.0\"?>\n<robot name=\"((((((((";
+  found += std::string(28, '\xC4') + "<Wxm\xC4";
+  expectSceneError([&] { loadBody(dir.write("found.urdf", found)); }, {"found.urdf", "not a valid URDF"});
+  for (const char lead : {'\xC2', '\xE2', '\xF0', '\xFF'}) {
+    const std::string in_value = std::string("<robot name=\"r") + lead;
+    expectSceneError([&] { loadBody(dir.write("value.urdf", in_value)); }, {"value.urdf", "not a valid URDF"});
+    const std::string after_tag = std::string("<robot name=\"r\"><link name=\"a\">&") + lead;
+    expectSceneError([&] { loadBody(dir.write("tag.urdf", after_tag)); }, {"tag.urdf", "not a valid URDF"});
+  }
+  const auto named = dir.write("named.urdf",
+                               "<robot name=\"bras\xC3\xA9\"><link name=\"\xE2\x88\x80\">"
+                               "<collision><geometry><box size=\"1 1 1\"/></geometry></collision>"
+                               "</link></robot>");
+  EXPECT_EQ(loadBody(named).pieces().size(), 1u);
+}
+
 TEST(UrdfErrors, MissingFile) {
   TempDir dir;
   expectSceneError([&] { loadBody(dir.path() / "absent.urdf"); }, {"absent.urdf", "file not found"});

@@ -29,6 +29,13 @@
 // checks both find invalid, and MDD's pair queries and rotating-search
 // triples (robot node, world node, interval) bounded per check.
 //
+// The MDD validator is told the planner's discarded lastValid fraction, as
+// `mddual bench` tells it (discardedLastValidFraction: KPIECE1's
+// min_valid_path_fraction, 0 for RRT-Connect and RRT): on a rotating edge whose
+// state at that fraction collides it answers lastValid = (s1, 0) without the
+// first-contact search, so with KPIECE MDD's mean kept fraction counts those
+// checks as 0 (KPIECE drops them whatever their fraction).
+//
 // Before timing, MDD's enlarged robot pieces (built on first use by a planning
 // run) are all built, so that no pass times their one-time construction.
 #include <ompl/base/MotionValidator.h>
@@ -49,6 +56,7 @@
 #include <vector>
 
 #include "bench_support.h"
+#include "mddual/planning/planner_factory.h"
 #include "mddual/planning/problem_setup.h"
 
 namespace {
@@ -227,15 +235,19 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
   const ob::MotionValidatorPtr mdd_validator = si->getMotionValidator();
   Recording rec;
   rec.si = si;
-  // 1. The recording: the planner on the MDD checkers, or a saved file.
+  // 1. The planner, and the largest lastValid fraction it drops, told to the
+  //    MDD validator as `mddual bench` does (recording and replay alike).
+  mddual::scene::PlannerSpec spec;
+  spec.name = planner;
+  const ob::PlannerPtr planner_ptr = mdd.makePlanner(spec);
+  mdd.setDiscardedLastValidFraction(mp::discardedLastValidFraction(*planner_ptr));
+  // 2. The recording: the planner on the MDD checkers, or a saved file.
   if (!opt.load.empty()) {
     load(&rec, problem.name, opt.load);
   } else {
     si->setMotionValidator(std::make_shared<RecordingValidator>(si, mdd_validator, &rec));
     si->setup();
-    mddual::scene::PlannerSpec spec;
-    spec.name = planner;
-    mdd.simpleSetup().setPlanner(mdd.makePlanner(spec));
+    mdd.simpleSetup().setPlanner(planner_ptr);
     mdd.applyPlannerContext(spec);
     mdd.simpleSetup().solve(opt.seconds);
     si->setMotionValidator(mdd_validator);
@@ -243,7 +255,7 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
   }
   if (!opt.save.empty()) save(rec, problem.name, opt.save);
   if (rec.checks.empty()) throw std::runtime_error(cfg + ": " + planner + ": no motion check recorded");
-  // 2. MDD's one-time set-up (see the file comment), then the replay,
+  // 3. MDD's one-time set-up (see the file comment), then the replay,
   //    alternating the checkers; the fastest pass of each.
   mddual::bench::buildEnlargedPieces(*mdd.mddScene());
   Pass m, f;
@@ -256,7 +268,7 @@ void benchConfig(const std::string& cfg, const std::string& planner, const Optio
     pass = replay(rec, fcl.spaceInformation(), fcl.spaceInformation()->getMotionValidator());
     if (pass.seconds < f.seconds) f = std::move(pass);
   }
-  // 3. The row.
+  // 4. The row.
   const double n = static_cast<double>(rec.checks.size());
   long last_valid = 0, mdd_only = 0, fcl_only = 0, both_lv = 0;
   double kept_m = 0.0, kept_f = 0.0;

@@ -34,7 +34,9 @@
 // min_valid_path_fraction, 0 for RRT-Connect and RRT): on a rotating edge whose
 // state at that fraction collides it answers lastValid = (s1, 0) without the
 // first-contact search, so with KPIECE MDD's mean kept fraction counts those
-// checks as 0 (KPIECE drops them whatever their fraction).
+// checks as 0 (KPIECE drops them whatever their fraction). With --load the
+// fraction is that of --planner's planner: the file does not name the planner
+// that recorded it, so name the same one.
 //
 // Before timing, MDD's enlarged robot pieces (built on first use by a planning
 // run) are all built, so that no pass times their one-time construction.

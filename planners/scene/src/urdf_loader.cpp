@@ -39,7 +39,7 @@ std::mutex& parseMutex() {
 
 /// NUL bytes after the text handed to urdfdom. Its parser (TinyXML 2.6)
 /// steps over a UTF-8 character by the length its lead byte announces, so a
-/// file ending in a truncated multi-byte character (a lead byte 0xC0-0xFF and
+/// file ending in a truncated multi-byte character (a lead byte 0xC2-0xF4 and
 /// fewer continuation bytes) made it step past the string's terminator and
 /// read beyond the buffer (found by fuzz_urdf; fuzz/findings/
 /// urdf-truncated-utf8). A lead byte announces at most 4 bytes, so after 4

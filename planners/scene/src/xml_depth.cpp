@@ -5,6 +5,7 @@
 #include <cctype>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 #include "scene_detail.h"
 
@@ -112,13 +113,14 @@ std::string requireShallowXml(const std::filesystem::path& file) {
   std::ostringstream text;
   text << in.rdbuf();
   if (!in && !in.eof()) throw SceneError(display(file) + ": cannot read the file");
-  const XmlDepth found = xmlElementDepth(text.str(), kMaxXmlElementDepth);
+  std::string xml = text.str();
+  const XmlDepth found = xmlElementDepth(xml, kMaxXmlElementDepth);
   if (found.depth > kMaxXmlElementDepth) {
     throw SceneError(display(file) + ":" + std::to_string(found.line) + ": XML elements nested more than " +
                      std::to_string(kMaxXmlElementDepth) + " deep (the most this loader reads: its XML parser " +
                      "recurses once per level; real files nest about ten deep)");
   }
-  return text.str();
+  return xml;
 }
 
 bool isXmlMesh(const std::filesystem::path& file) {

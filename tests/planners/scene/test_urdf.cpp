@@ -178,24 +178,30 @@ TEST(UrdfErrors, PathologicalNestingIsRefusedBeforeParsing) {
 // fuzz_urdf: a file ending in a truncated UTF-8 character made urdfdom's
 // parser (TinyXML 2.6) step past the text's terminator and read beyond the
 // buffer (ASan: heap-buffer-overflow in TiXmlBase::GetEntity). The loader pads
-// the text; such a file is a clear error, and UTF-8 names still load.
+// the text; such a file is a clear error, and UTF-8 names still load. The
+// overread itself is what fuzz.sh's replay of the finding checks, under ASan
+// (this test's build is not instrumented, nor is the system's TinyXML); here,
+// the messages. TinyXML steps by a lead byte's length only in UTF-8 mode,
+// which the XML declaration selects.
 TEST(UrdfErrors, TruncatedUtf8AtTheEndIsAnErrorNotAnOverread) {
   TempDir dir;
-  // The fuzzer's input (fuzz/findings/urdf-truncated-utf8), then the other
-  // lead bytes at the very end, inside an attribute and after a tag.
-  std::string found = "<?xml version=\"1.0\"?>\n<robot name=\"((((((((";
+  // The fuzzer's input (fuzz/findings/urdf-truncated-utf8), then lead bytes
+  // of 2, 3 and 4 bytes at the very end, inside an attribute and after an
+  // entity's '&'.
+  const std::string declaration = "<?xml version=\"1.0\"?>\n";
+  std::string found = declaration + "<robot name=\"((((((((";
   found += std::string(28, '\xC4') + "<Wxm\xC4";
   expectSceneError([&] { loadBody(dir.write("found.urdf", found)); }, {"found.urdf", "not a valid URDF"});
-  for (const char lead : {'\xC2', '\xE2', '\xF0', '\xFF'}) {
-    const std::string in_value = std::string("<robot name=\"r") + lead;
+  for (const char lead : {'\xC2', '\xE2', '\xF0', '\xF4'}) {
+    const std::string in_value = declaration + "<robot name=\"r" + lead;
     expectSceneError([&] { loadBody(dir.write("value.urdf", in_value)); }, {"value.urdf", "not a valid URDF"});
-    const std::string after_tag = std::string("<robot name=\"r\"><link name=\"a\">&") + lead;
+    const std::string after_tag = declaration + "<robot name=\"r\"><link name=\"a\">&" + lead;
     expectSceneError([&] { loadBody(dir.write("tag.urdf", after_tag)); }, {"tag.urdf", "not a valid URDF"});
   }
-  const auto named = dir.write("named.urdf",
-                               "<robot name=\"bras\xC3\xA9\"><link name=\"\xE2\x88\x80\">"
-                               "<collision><geometry><box size=\"1 1 1\"/></geometry></collision>"
-                               "</link></robot>");
+  const auto named = dir.write("named.urdf", declaration +
+                                                 "<robot name=\"bras\xC3\xA9\"><link name=\"\xE2\x88\x80\">"
+                                                 "<collision><geometry><box size=\"1 1 1\"/></geometry></collision>"
+                                                 "</link></robot>");
   EXPECT_EQ(loadBody(named).pieces().size(), 1u);
 }
 

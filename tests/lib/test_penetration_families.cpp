@@ -112,8 +112,14 @@ TEST(PenetrationFamilies, IntegerLatticePoints) {
         }
         // Integer offsets (touching or overlapping by whole units) and half units.
         Eigen::Vector3d p_b;
-        for (int i = 0; i < 3; ++i)
-          p_b[i] = uniformInt(rng, -2, 1) + 0.5 * uniformInt(rng, 0, 1) * uniformInt(rng, 0, 1);
+        for (int i = 0; i < 3; ++i) {
+          // One draw per statement: the operands of + and * are unsequenced
+          // (GCC and Clang both go left to right here, which this keeps).
+          const int whole = uniformInt(rng, -2, 1);
+          const int half = uniformInt(rng, 0, 1);
+          const int keep_half = uniformInt(rng, 0, 1);
+          p_b[i] = whole + 0.5 * half * keep_half;
+        }
         checkPair(a, Eigen::Isometry3d::Identity(), b, pose(Eigen::Matrix3d::Identity(), p_b), o, tally);
       },
       1303);

@@ -133,12 +133,16 @@ class MddMotionValidator : public ompl::base::MotionValidator {
 
   /// For a planner that drops every partial motion whose lastValid.second
   /// is at most `fraction` (KPIECE1, BKPIECE1, LBKPIECE1, STRIDE: their
-  /// min_valid_path_fraction, see discardedLastValidFraction): checkMotion(s1, s2, lastValid) on a rotating edge first
-  /// tests the state at that fraction, and when it collides returns lastValid = (copy of s1, 0) without searching for
-  /// the first contact. The planner decides as it would have: the first contact is before that state, so the true bound
-  /// would be at most `fraction` too. The contract above holds ((s1, 0) as for a colliding start; the verdict is the
-  /// same). 0, the default, turns it off; translation edges never take it (their exact sweep costs about what the state
-  /// test costs). Throws InvalidInputError outside [0, 1]. Set it between planner runs, not during one.
+  /// min_valid_path_fraction, see discardedLastValidFraction):
+  /// checkMotion(s1, s2, lastValid) on a rotating edge first tests the state
+  /// at that fraction, and when it collides returns lastValid = (copy of s1,
+  /// 0) without searching for the first contact. The planner decides as it
+  /// would have: the first contact is before that state, so the true bound
+  /// would be at most `fraction` too. The contract above holds ((s1, 0) as
+  /// for a colliding start; the verdict is the same). 0, the default, turns
+  /// it off; translation edges never take it (their exact sweep costs about
+  /// what the state test costs). Throws InvalidInputError outside [0, 1].
+  /// Set it between planner runs, not during one.
   void setDiscardedLastValidFraction(double fraction);
   double discardedLastValidFraction() const { return discarded_fraction_.load(std::memory_order_relaxed); }
 

@@ -350,7 +350,9 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
   // A NaN pose fails every volume test and would reach no pair: "free".
   requireFinitePose(X_WR, "the robot pose X_WR", "MddScene::collides");
   const std::vector<scene::Piece>& world = world_->pieces();
-  const std::shared_ptr<WarmTable> table = warmTable();  // held for the whole query
+  // Fetched at the first pair that reaches the core and held for the rest of
+  // the query: most states of a sparse scene reach none.
+  std::shared_ptr<WarmTable> table;
   int queries = 0;
   bool hit = false;
   for (int t = 0; t < 2 && !hit; ++t) {
@@ -363,6 +365,7 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
       in.b = &setPiece(set, i).polytope;
       in.X_WB = X_WR;
       ++queries;
+      if (!table) table = warmTable();
       if (!intersect(in, warmIn(*table, set, i, world_->idOf(j))).intersecting) return true;
       if (which) {
         *which = PieceContact();

@@ -73,28 +73,34 @@ struct Scratch {
   std::vector<Entry> heap;
 };
 
+/// The scratches of this thread (one per nesting depth) and the depth in use.
+struct ScratchPool {
+  std::vector<std::unique_ptr<Scratch>> scratch;
+  std::size_t depth = 0;
+};
+
+/// One thread_local, reached once per lease: a lease is taken per traversal,
+/// and on a sparse scene a state check's traversal is a single sphere test.
+ScratchPool& scratchPool() {
+  thread_local ScratchPool pool;
+  return pool;
+}
+
 class ScratchLease {
  public:
-  ScratchLease() {
-    if (pool().size() <= depth()) pool().push_back(std::make_unique<Scratch>());
-    scratch_ = pool()[depth()].get();
-    ++depth();
+  ScratchLease() : pool_(scratchPool()) {
+    if (pool_.scratch.size() <= pool_.depth) pool_.scratch.push_back(std::make_unique<Scratch>());
+    scratch_ = pool_.scratch[pool_.depth].get();
+    ++pool_.depth;
   }
-  ~ScratchLease() { --depth(); }
+  ~ScratchLease() { --pool_.depth; }
   ScratchLease(const ScratchLease&) = delete;
   ScratchLease& operator=(const ScratchLease&) = delete;
   Scratch& operator*() const { return *scratch_; }
   Scratch* operator->() const { return scratch_; }
 
  private:
-  static std::vector<std::unique_ptr<Scratch>>& pool() {
-    thread_local std::vector<std::unique_ptr<Scratch>> p;
-    return p;
-  }
-  static std::size_t& depth() {
-    thread_local std::size_t d = 0;
-    return d;
-  }
+  ScratchPool& pool_;
   Scratch* scratch_;
 };
 

@@ -214,12 +214,7 @@ bool Obb::contains(const Eigen::Vector3d& p_F, double tol) const {
   return (y.cwiseAbs() - half).maxCoeff() <= tol;
 }
 
-namespace {
-
-/// obbsDisjoint; on the 6 face axes only when kEdgeAxes is false (disjoint
-/// there implies disjoint: a weaker test for less work).
-template <bool kEdgeAxes>
-bool satDisjoint(const Obb& a, const Obb& b, double slack) {
+bool obbsDisjoint(const Obb& a, const Obb& b, double slack) {
   const SatFrame f(a, b, slack);
   const Eigen::Vector3d& ha = a.half;
   const Eigen::Vector3d& hb = b.half;
@@ -229,7 +224,6 @@ bool satDisjoint(const Obb& a, const Obb& b, double slack) {
   for (int j = 0; j < 3; ++j) {
     if (std::abs(f.t.dot(f.R.col(j))) > ha.dot(f.absR.col(j)) + hb[j] + f.slack) return true;
   }
-  if (!kEdgeAxes) return false;
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
@@ -240,12 +234,6 @@ bool satDisjoint(const Obb& a, const Obb& b, double slack) {
     }
   }
   return false;
-}
-
-}  // namespace
-
-bool obbsDisjoint(const Obb& a, const Obb& b, double slack) {
-  return satDisjoint<true>(a, b, slack);
 }
 
 namespace {
@@ -467,10 +455,7 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
     // scenes up to half their state-check time.
     const bool obb_pays = A.isLeaf() || B.isLeaf() || obbMuchTighter(A.obb.half, 0.5 * A.box.sizes()) ||
                           obbMuchTighter(pb.obb.half, pb.aabb_half);
-    if (obb_pays && (A.isLeaf() && B.isLeaf() ? satDisjoint<true>(A.obb, pb.obb, slack)
-                                              : satDisjoint<false>(A.obb, pb.obb, slack))) {
-      continue;
-    }
+    if (obb_pays && obbsDisjoint(A.obb, pb.obb, slack)) continue;
     if (A.isLeaf() && B.isLeaf()) {
       ++local.leaf_pairs;
       if (!fn(a.leafPiece(na), b.leafPiece(nb))) {

@@ -656,6 +656,38 @@ TEST(Bvh, ACallbackMayRunAnotherTraversal) {
   EXPECT_GE(inner, 20);
 }
 
+/// A tree-against-tree traversal nested in another's callback, on the same
+/// trees at another pose: each finds the pairs it finds alone (the outer one's
+/// posed nodes, cached per query in two stages, survive the inner query).
+TEST(Bvh, NestedTreeAgainstTreeTraversalsKeepTheirOwnPoses) {
+  Rng rng(12);
+  const std::vector<Points> pa = randomPieces(rng, 60, 3.0), pb = randomPieces(rng, 30, 1.5);
+  const Bvh a(pa), b(pb);
+  using Pairs = std::set<std::pair<int, int>>;
+  const auto alone = [&](const Eigen::Isometry3d& X) {
+    Pairs out;
+    forEachOverlappingPair(a, b, X, 0.0, [&](int i, int j) { return out.emplace(i, j).second; });
+    return out;
+  };
+  int nested_calls = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    const Eigen::Isometry3d X_outer = randomPose(rng, 2.0);
+    const Eigen::Isometry3d X_inner = randomPose(rng, 2.0);
+    const Pairs want_outer = alone(X_outer), want_inner = alone(X_inner);
+    Pairs outer;
+    forEachOverlappingPair(a, b, X_outer, 0.0, [&](int i, int j) {
+      outer.emplace(i, j);
+      Pairs inner;
+      forEachOverlappingPair(a, b, X_inner, 0.0, [&](int k, int l) { return inner.emplace(k, l).second; });
+      EXPECT_EQ(inner, want_inner) << "trial " << trial;
+      ++nested_calls;
+      return true;
+    });
+    EXPECT_EQ(outer, want_outer) << "trial " << trial;
+  }
+  EXPECT_GE(nested_calls, 20);  // not a degenerate sample: the outer traversals reached pairs
+}
+
 TEST(Bvh, BadInputIsReportedByPieceAndPoint) {
   const auto expectMessage = [](const auto& f, const std::string& part) {
     try {

@@ -360,6 +360,16 @@ bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, co
   return false;
 }
 
+bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, const Eigen::Vector3d& v, double slack) {
+  // The segment's ends in the box's frame (y = axes^T (x - centre)): the
+  // sphere misses the box when, on one axis, both ends lie beyond the box's
+  // half extent grown by r + slack, on the same side.
+  const Eigen::Vector3d p0 = box.axes_F.transpose() * (c - box.centre_F);
+  const Eigen::Vector3d p1 = p0 + box.axes_F.transpose() * v;
+  const Eigen::Array3d reach = box.half.array() + (r + slack);
+  return (p0.cwiseMin(p1).array() > reach).any() || (p0.cwiseMax(p1).array() < -reach).any();
+}
+
 bool obbsDisjoint(const Obb& a, const Obb& b) {
   return obbsDisjoint(a, b, satSlack(a, b));
 }

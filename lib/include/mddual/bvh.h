@@ -129,6 +129,17 @@ bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, co
 bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, const Eigen::Vector3d& h,
                     const Eigen::Vector3d& u, double max_s, double slack);
 
+/// Whether the sphere of centre c and radius r, swept along the segment from
+/// c to c + v (v zero for a sphere at rest), misses the oriented box `box`
+/// (same frame) by more than `slack` (absolute; >= 0) along one of the box's
+/// 3 face axes: the segment's projection on the axis, grown by r + slack,
+/// against the box's. Sound (a swept sphere that meets the box meets it on
+/// every axis) and cheap: no frame between two boxes, no division. For a
+/// sweep whose sphere is all that is posed yet (checkRotating's triples,
+/// before the robot node's box over the interval is built) against a node of
+/// large flat triangles, whose box is a thin slab inside a wide sphere.
+bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, const Eigen::Vector3d& v, double slack);
+
 /// Options of a Bvh.
 struct BvhOptions {
   /// Inner nodes with at most this many pieces also get the convex hull of

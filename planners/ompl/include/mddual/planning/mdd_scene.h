@@ -49,8 +49,10 @@
 //      hold N at every t in I when translated by s v for s = (t - ta) / (tb -
 //      ta) in [0, 1]. A triple is cleared when one of those volumes swept by
 //      s v, s in [0, 1], misses the same volume of M (swept sphere, slab and
-//      separating-axis tests, exact for each pair of volumes): then no piece
-//      of N touches a piece of M at any time of I.
+//      separating-axis tests, exact for each pair of volumes), or when N's
+//      swept sphere misses M's oriented box along one of that box's face
+//      axes (sweptSphereObbApart: a sphere that meets the box meets it on
+//      every axis): then no piece of N touches a piece of M at any time of I.
 //      Otherwise it is split into two triples that cover it: I halved, or
 //      the larger of N and M replaced by its children (which of them is a
 //      matter of speed, not soundness: mdd_scene_rotation.cpp). The swept

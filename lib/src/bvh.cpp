@@ -360,6 +360,37 @@ bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, co
   return false;
 }
 
+bool triangleObbApart(const std::array<Eigen::Vector3d, 3>& tri, const Obb& box, double slack) {
+  // 1. The triangle in the box's frame, where the box is [-half, half].
+  const Eigen::Matrix3d& U = box.axes_F;
+  const Eigen::Vector3d p0 = U.transpose() * (tri[0] - box.centre_F);
+  const Eigen::Vector3d p1 = U.transpose() * (tri[1] - box.centre_F);
+  const Eigen::Vector3d p2 = U.transpose() * (tri[2] - box.centre_F);
+  const Eigen::Vector3d& h = box.half;
+  // 2. The box's face normals: the triangle's extent against the box's.
+  const Eigen::Array3d lo = p0.cwiseMin(p1).cwiseMin(p2).array(), hi = p0.cwiseMax(p1).cwiseMax(p2).array();
+  if ((lo - h.array() > slack).any() || (hi + h.array() < -slack).any()) return true;
+  // 3. An axis a of any length: the box projects to [-r, r], r = half .
+  //    |a|; the slack is scaled by |a|_1 >= |a| (no square root, and never
+  //    less than the slack along the unit axis).
+  const auto apart = [&](const Eigen::Vector3d& a) {
+    const double r = h.dot(a.cwiseAbs()) + slack * a.cwiseAbs().sum();
+    const double d0 = a.dot(p0), d1 = a.dot(p1), d2 = a.dot(p2);
+    return std::min({d0, d1, d2}) > r || std::max({d0, d1, d2}) < -r;
+  };
+  const Eigen::Vector3d f0 = p1 - p0, f1 = p2 - p1, f2 = p0 - p2;
+  if (apart(f0.cross(f1))) return true;  // the triangle's normal (zero for a segment: never apart)
+  // 4. Box axis e_k x edge f: e_x x f = (0, -f_z, f_y), e_y x f = (f_z, 0,
+  //    -f_x), e_z x f = (-f_y, f_x, 0).
+  for (const Eigen::Vector3d* f : {&f0, &f1, &f2}) {
+    if (apart(Eigen::Vector3d(0.0, -f->z(), f->y())) || apart(Eigen::Vector3d(f->z(), 0.0, -f->x())) ||
+        apart(Eigen::Vector3d(-f->y(), f->x(), 0.0))) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, const Eigen::Vector3d& v, double slack) {
   // The segment's ends in the box's frame (y = axes^T (x - centre)): the
   // sphere misses the box when, on one axis, both ends lie beyond the box's
@@ -465,7 +496,13 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
     // scenes up to half their state-check time.
     const bool obb_pays = A.isLeaf() || B.isLeaf() || obbMuchTighter(A.obb.half, 0.5 * A.box.sizes()) ||
                           obbMuchTighter(pb.obb.half, pb.aabb_half);
-    if (obb_pays && obbsDisjoint(A.obb, pb.obb, slack)) continue;
+    // A triangle leaf of A: the exact triangle-box test in place of its box
+    // (which a large triangle fills only half of).
+    if (A.triangle >= 0) {
+      if (triangleObbApart(a.triangle(A.triangle), pb.obb, slack)) continue;
+    } else if (obb_pays && obbsDisjoint(A.obb, pb.obb, slack)) {
+      continue;
+    }
     if (A.isLeaf() && B.isLeaf()) {
       ++local.leaf_pairs;
       if (!fn(a.leafPiece(na), b.leafPiece(nb))) {

@@ -216,6 +216,10 @@ int Bvh::build(std::vector<std::vector<Eigen::Vector3d>>& points, std::vector<Ei
     leaf.max_norm += pad;
     leaf.scale = std::max({nodeScale(leaf.obb, leaf.centre, leaf.radius), leaf.box.min().cwiseAbs().maxCoeff(),
                            leaf.box.max().cwiseAbs().maxCoeff()});
+    if (p.size() == 3) {
+      leaf.triangle = static_cast<int>(triangles_.size());
+      triangles_.push_back({p[0], p[1], p[2]});
+    }
     nodes_[static_cast<std::size_t>(index)] = leaf;
     leaf_of_[static_cast<std::size_t>(piece)] = index;
     return index;

@@ -652,6 +652,68 @@ TEST(Bvh, SweptSphereAgainstABoxIsSoundAndSeparatesOnEveryFaceAxis) {
   EXPECT_GT(meets_count, 600);
 }
 
+TEST(Bvh, TriangleAgainstABoxAgreesWithTheCore) {
+  // triangleObbApart (no slack) against the core's intersect on the
+  // triangle and the box's corners as polytopes; triangles of every shape
+  // (large and thin ones, some segments), boxes flat and thick.
+  Rng rng(41);
+  int apart_count = 0, meets_count = 0, box_test_misses = 0;
+  for (int q = 0; q < 3000; ++q) {
+    const Obb box = randomBox(rng, 1.0, q % 5 == 0 ? 0.001 : 0.05, 1.0);
+    std::array<Eigen::Vector3d, 3> tri;
+    const double size = q % 3 == 0 ? 3.0 : 1.0;
+    for (Eigen::Vector3d& v : tri) v = uniformVector(rng, -size, size);
+    const bool segment = q % 50 == 0;
+    if (segment) tri[2] = 0.5 * (tri[0] + tri[1]);
+    const bool apart = triangleObbApart(tri, box, 0.0);
+    if (segment) {
+      // No polytope for three collinear points: a sound answer is enough
+      // (every point of a segment called apart lies outside the box).
+      for (int k = 0; k <= 200 && apart; ++k) {
+        EXPECT_GT(distanceToBox(box, tri[0] + (k / 200.0) * (tri[1] - tri[0])), 0.0) << "query " << q;
+      }
+      continue;
+    }
+    const auto corners = box.corners();
+    const ConvexPolytope pb = ConvexPolytope::fromPoints(Points(corners.begin(), corners.end()));
+    const ConvexPolytope pt = ConvexPolytope::fromPoints(Points(tri.begin(), tri.end()));
+    IntersectInput in;
+    in.a = &pb;
+    in.b = &pt;
+    std::ostringstream repro;
+    repro << std::setprecision(17) << "query " << q << ": box centre " << box.centre_F.transpose() << ", half "
+          << box.half.transpose() << ", axes " << box.axes_F.reshaped().transpose() << "; triangle "
+          << tri[0].transpose() << " / " << tri[1].transpose() << " / " << tri[2].transpose();
+    EXPECT_EQ(apart, !intersect(in).intersecting) << repro.str();
+    ++(apart ? apart_count : meets_count);
+    // The triangle's own box (what the traversal tested before): apart less often.
+    Obb tri_box;
+    tri_box.centre_F = (tri[0] + tri[1] + tri[2]) / 3.0;
+    tri_box.half = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& v : tri) tri_box.half = tri_box.half.cwiseMax((v - tri_box.centre_F).cwiseAbs());
+    if (apart && !obbsDisjoint(tri_box, box, 0.0)) ++box_test_misses;
+    if (!apart) {
+      EXPECT_FALSE(obbsDisjoint(tri_box, box, 0.0)) << repro.str();
+    }
+  }
+  EXPECT_GT(apart_count, 600);
+  EXPECT_GT(meets_count, 600);
+  EXPECT_GT(box_test_misses, 100);  // the triangle test prunes pairs its box does not
+  // A slack closes a gap smaller than itself.
+  Obb unit;
+  unit.half = Eigen::Vector3d::Ones();
+  const std::array<Eigen::Vector3d, 3> above{Eigen::Vector3d(0, 0, 1.5), Eigen::Vector3d(1, 0, 1.5),
+                                             Eigen::Vector3d(0, 1, 1.5)};
+  EXPECT_TRUE(triangleObbApart(above, unit, 0.4));
+  EXPECT_FALSE(triangleObbApart(above, unit, 0.6));
+  // Off the box's edge, apart only along an edge axis: the triangle x + y =
+  // 2.2 (a gap of 0.2 / sqrt(2) from the edge x = y = 1).
+  const std::array<Eigen::Vector3d, 3> diagonal{Eigen::Vector3d(2.2, 0, -3), Eigen::Vector3d(0, 2.2, -3),
+                                                Eigen::Vector3d(1.1, 1.1, 3)};
+  EXPECT_TRUE(triangleObbApart(diagonal, unit, 0.1));
+  EXPECT_FALSE(triangleObbApart(diagonal, unit, 0.2));
+}
+
 TEST(Bvh, DegenerateInputs) {
   // One piece: the root is a leaf.
   const Bvh one({generators::box({1, 1, 1})});

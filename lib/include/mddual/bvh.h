@@ -140,6 +140,16 @@ bool sweptAabbApart(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& c, co
 /// large flat triangles, whose box is a thin slab inside a wide sphere.
 bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, const Eigen::Vector3d& v, double slack);
 
+/// Whether the triangle `tri` (its three points; a segment or a point when
+/// they are collinear or coincide) and the oriented box `box` (same frame)
+/// are apart by more than `slack` (absolute; >= 0) along one of the 13 axes
+/// of the separating-axis theorem for a triangle and a box: the box's 3 face
+/// normals, the triangle's normal and the 9 products of a box axis and a
+/// triangle edge. Exact for the pair up to the slack (the box's own box
+/// around the triangle is not: a large triangle fills half of it), so a
+/// world leaf that is a triangle is tested with it in place of its box.
+bool triangleObbApart(const std::array<Eigen::Vector3d, 3>& tri, const Obb& box, double slack);
+
 /// Options of a Bvh.
 struct BvhOptions {
   /// Inner nodes with at most this many pieces also get the convex hull of
@@ -167,6 +177,9 @@ class Bvh {
     int first = 0;  ///< the node's pieces: pieceAt(first .. first + count - 1)
     int count = 0;
     int hull = -1;  ///< index of the node's hull, -1 when it has none
+    /// A leaf whose piece has exactly 3 points: index of its triangle
+    /// (Bvh::triangle), -1 otherwise.
+    int triangle = -1;
     bool isLeaf() const { return left < 0; }
   };
 
@@ -196,6 +209,8 @@ class Bvh {
   int pieceAt(int k) const { return order_[static_cast<std::size_t>(k)]; }
   /// The node's hull (frame S), or nullptr.
   const ConvexPolytope* hull(int n) const;
+  /// The points of a triangle leaf (Node::triangle), frame S.
+  const std::array<Eigen::Vector3d, 3>& triangle(int k) const { return triangles_[static_cast<std::size_t>(k)]; }
   /// The leaf of a piece.
   int leafOf(int piece) const { return leaf_of_[static_cast<std::size_t>(piece)]; }
   /// Longest root-to-leaf path (edges; 0 for a single leaf, -1 when empty).
@@ -218,6 +233,7 @@ class Bvh {
   std::vector<int> order_;
   std::vector<int> leaf_of_;
   std::vector<std::shared_ptr<const ConvexPolytope>> hulls_;
+  std::vector<std::array<Eigen::Vector3d, 3>> triangles_;
   int height_ = -1;
 };
 

@@ -228,8 +228,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if ((posed.c_W + s * u_W - M.centre).squaredNorm() > reach * reach) return kInf;
     // The same swept sphere against M's box (a node of large flat triangles
     // has a thin box in a wide sphere), before N's box is posed. Callgrind
-    // (RRT-Connect's recorded checks, MDD's checkEdge): bugtrap -5.8%,
-    // twistycool -0.6%, the apartment +0.7% (its checks are mostly state
+    // (RRT-Connect's recorded checks, MDD's checkEdge): bugtrap -6.1%,
+    // twistycool -0.8%, the apartment +0.6% (its checks are mostly state
     // checks; see the README's account for the variants tried).
     if (sweptSphereObbApart(M.obb, posed.c_W, r, posed.sweep.v_W, slack)) return kInf;
     if (!posed.has_box) {

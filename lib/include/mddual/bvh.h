@@ -13,7 +13,8 @@
 // inner nodes with few pieces also hold the convex hull of their pieces'
 // vertices: the core's toi on a pair of hulls is a lower bound of the toi of
 // every pair of pieces below (a hull contains its pieces), so a cast can prune
-// with it.
+// with it. A leaf whose piece has exactly three points (a mesh triangle) also
+// keeps them: tree-against-tree tests the triangle itself.
 //
 // Thread safety: a Bvh is immutable after construction; any number of threads
 // may run queries on it at once.
@@ -250,7 +251,8 @@ struct BvhStats {
 /// fn(piece_a, piece_b) for the pairs whose volumes overlap at every pair of
 /// nodes on the way down to their leaves (spheres and boxes at every pair;
 /// oriented boxes at the leaves and where one is much tighter than its
-/// axis-aligned box), until fn
+/// axis-aligned box; a leaf of a that is a triangle is tested itself against
+/// b's oriented box, triangleObbApart), until fn
 /// returns false. These are some of the pairs whose leaf volumes overlap, and
 /// they include every pair whose pieces come within margin_b of each other
 /// (touching included). Returns false when fn stopped it. X_AB must be a

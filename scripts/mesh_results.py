@@ -9,12 +9,19 @@ FCL discrete's, the longest run against the limit (does a run end near its
 limit?), invalid solutions, the median share of planning time spent in the
 checkers (where it is small, a faster checker cannot make the planner much
 faster), median peak memory, and the median verification time per solved
-run; then the issue's targets with their verdicts as measured.
+run, the checkers' time per motion check (their summed time over the summed
+motion checks of the group's runs: state checks included, as OMPL counts
+them), then the issue's targets with their verdicts as measured.
 The text replaces what lies between `<!-- mesh-results:begin -->` and
 `<!-- mesh-results:end -->` in README.md (--readme; --marker names other
 markers), or goes to standard output.
 
+--repeats DIR reads DIR/<config>-<planner>/bench.db instead (one `mddual
+bench` run per group, e.g. 30 runs of the groups nearest the target) and
+writes one row per group with the verdict of each (markers mesh-repeats).
+
     scripts/mesh_results.py [--bench out/bench-mesh] [--readme README.md] [--command TEXT]
+    scripts/mesh_results.py --repeats out/bench-check30 [--readme README.md] [--command TEXT]
 """
 
 import argparse
@@ -47,11 +54,63 @@ def median_of(rows, key):
     return bench_report.median(vals) if vals else None
 
 
+def per_check(rows):
+    """The checkers' summed time over the summed motion checks, in microseconds."""
+    t = sum(r.get("checking_time") or 0.0 for r in rows)
+    n = sum(r.get("motion_checks") or 0 for r in rows)
+    return 1e6 * t / n if n else None
+
+
+def verdict(mdd, fcl):
+    return mdd["ratio"] is not None and mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
+
+
+def repeats(repeat_dir, command, marker="mesh-repeats"):
+    """One row per <config>-<planner> folder of repeat_dir, in CONFIGS order."""
+    lines = ["| config, planner (runs x limit) | success mdd / fcl | median time (s) mdd / fcl | mdd / FCL | "
+             "invalid mdd / fcl | solved time (s) mdd / fcl | per motion check (us) mdd / fcl | target |",
+             "|---|---|---|---|---|---|---|---|"]
+    groups = []
+    for name in sorted(os.listdir(repeat_dir)):
+        db = os.path.join(repeat_dir, name, "bench.db")
+        if os.path.exists(db):
+            rows = bench_report.load(db)
+            c = rows[0]["config"] if rows else name
+            groups.append((CONFIGS.index(c) if c in CONFIGS else len(CONFIGS), name, rows))
+    if not groups:
+        raise SystemExit("mesh_results: no %s/<config>-<planner>/bench.db" % repeat_dir)
+    n_met = 0
+    for _, name, rows in sorted(groups, key=lambda g: (g[0], g[1])):
+        stats = bench_report.summarise(rows)
+        for (c, p, k), mdd in sorted(stats.items()):
+            fcl = stats.get((c, p, "fcl"))
+            if k != "mdd" or not fcl:
+                continue
+            group = [[r for r in rows if r["planner"] == p and r["checker"] == ck] for ck in CHECKERS]
+            met = verdict(mdd, fcl)
+            n_met += met
+            lines.append("| %s, %s (%d x %gs) | %s | %s | %s | %s | %s | %s | %s |" % (
+                c, p, mdd["runs"], group[0][0]["timelimit"],
+                pair([mdd, fcl], lambda s: "%d of %d" % (s["verified"], s["runs"])),
+                pair([mdd, fcl], lambda s: bench_report.fmt(s["median_time"])),
+                bench_report.fmt(mdd["ratio"], 2),
+                pair([mdd, fcl], lambda s: str(s["invalid"])),
+                pair([mdd, fcl], lambda s: bench_report.fmt(s["solved_time"])),
+                pair([per_check(g) for g in group], lambda t: "%.3g" % t),
+                "met" if met else "**missed**"))
+    text = ["Made by `scripts/mesh_results.py --repeats DIR --readme README.md%s` from `%s`: "
+            "the target (median at most half of FCL's at the same or better success) met in %d of %d groups. "
+            "`solved time` is the median over the runs that returned a path, valid or not (the planner's raw "
+            "speed); `per motion check`, the checkers' summed time over the summed motion checks."
+            % ("" if marker == "mesh-repeats" else " --marker " + marker, command, n_met, len(lines) - 2), ""]
+    return "\n".join(text + lines) + "\n"
+
+
 def overview(bench_dir, command, marker=MARKER):
     lines = ["| config (runs x limit) | planner | success mdd / fcl | median time (s) mdd / fcl | mdd / FCL | "
              "longest run / limit mdd / fcl | invalid mdd / fcl | checking share mdd / fcl | memory (MB) mdd / fcl | "
-             "verification (s) mdd / fcl |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "verification (s) mdd / fcl | per motion check (us) mdd / fcl |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     verdicts, overruns, mdd_invalid, found = [], [], 0, []
     for c in CONFIGS:
         db = os.path.join(bench_dir, c, "bench.db")
@@ -67,7 +126,7 @@ def overview(bench_dir, command, marker=MARKER):
             limit = rows[0]["timelimit"]
             longest = [max((r["time"] for r in g if r.get("time") is not None), default=None) for g in group]
             solved = [[r for r in g if bench_report.exact(r)] for g in group]
-            lines.append("| %s, %d x %gs | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            lines.append("| %s, %d x %gs | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 c, max(len(g) for g in group), limit, p,
                 pair(st, lambda s: "%.0f%%" % (100 * s["success"])),
                 pair(st, lambda s: bench_report.fmt(s["median_time"])),
@@ -76,12 +135,13 @@ def overview(bench_dir, command, marker=MARKER):
                 pair(st, lambda s: str(s["invalid"])),
                 pair(st, share),
                 pair([median_of(g, "memory") for g in group], lambda m: "%.0f" % m),
-                pair([median_of(g, "verification_time") for g in solved], lambda t: bench_report.fmt(t))))
+                pair([median_of(g, "verification_time") for g in solved], lambda t: bench_report.fmt(t)),
+                pair([per_check(g) for g in group], lambda t: "%.3g" % t)))
             mdd, fcl = st
             if mdd:
                 mdd_invalid += mdd["invalid"]
             if mdd and fcl:
-                met = mdd["ratio"] is not None and mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
+                met = verdict(mdd, fcl)
                 verdicts.append("%s %s: %s / %s s (ratio %s), success %.0f%% / %.0f%%: %s" % (
                     c, p, bench_report.fmt(mdd["median_time"]), bench_report.fmt(fcl["median_time"]),
                     bench_report.fmt(mdd["ratio"], 2) if mdd["ratio"] is not None else "-",
@@ -115,10 +175,17 @@ def main():
     parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-mesh"))
     parser.add_argument("--readme", help="replace the text between the mesh-results markers in this file")
     parser.add_argument("--command", default="./scripts/run-mesh-bench.sh")
-    parser.add_argument("--marker", default=MARKER,
-                        help="the markers' name: <!-- NAME:begin --> ... <!-- NAME:end --> (default %(default)s)")
+    parser.add_argument("--repeats", metavar="DIR",
+                        help="one group per DIR/<config>-<planner>/bench.db (markers mesh-repeats by default)")
+    parser.add_argument("--marker", help="the markers' name: <!-- NAME:begin --> ... <!-- NAME:end --> "
+                        "(default mesh-results, mesh-repeats with --repeats)")
     args = parser.parse_args()
-    text = overview(args.bench, args.command, args.marker)
+    if args.repeats:
+        args.marker = args.marker or "mesh-repeats"
+        text = repeats(args.repeats, args.command, args.marker)
+    else:
+        args.marker = args.marker or MARKER
+        text = overview(args.bench, args.command, args.marker)
     if not args.readme:
         sys.stdout.write(text)
         return

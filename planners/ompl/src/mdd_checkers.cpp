@@ -156,13 +156,23 @@ void MddMotionValidator::setDiscardedLastValidFraction(double fraction) {
   discarded_fraction_.store(fraction, std::memory_order_relaxed);
 }
 
-bool MddMotionValidator::discardedPartCollides(const ob::State* s1, const ob::State* s2) const {
-  const double f = discarded_fraction_.load(std::memory_order_relaxed);
-  // An edge that leaves the bounds before f is dropped too (its lastValid is
-  // at most the exit); a start outside them takes evaluate's (s1, 0) path.
-  if (f == 0.0 || !si_->satisfiesBounds(s1)) return false;
+bool MddMotionValidator::blockedEarly(const ob::State* s1, const ob::State* s2) const {
+  // A rotating edge only (a translation edge's exact sweep costs about what
+  // the state test costs), from a start within the bounds (a start outside
+  // them takes evaluate's (s1, 0) path; an edge that leaves them before the
+  // state tested has its lastValid at most the exit).
+  if (!si_->satisfiesBounds(s1)) return false;
   const EdgeMotion motion = space_->motion(s1, s2);
   if (!motion.rotates()) return false;
+  // The state tested: the planner's discarded fraction, or else one step of
+  // OMPL's discrete check into the edge (validSegmentCount asserts that s2's
+  // rotations are within their bounds; an edge of one step has none).
+  double f = discarded_fraction_.load(std::memory_order_relaxed);
+  if (f == 0.0 && space_->rotationsWithinBounds(s2)) {
+    const unsigned int steps = si_->getStateSpace()->validSegmentCount(s1, s2);
+    if (steps >= 2) f = 1.0 / steps;
+  }
+  if (f == 0.0) return false;
   int pair_queries = 0;
   const bool hit = scene_->collides(motion.pose(f), &pair_queries);
   counters_.addPairQueries(static_cast<std::uint64_t>(pair_queries));
@@ -173,9 +183,14 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                      std::pair<ob::State*, double>& lastValid) const {
   CheckerCounters::Timer timer(counters_);
   counters_.addMotionCheck();
-  // A planner that drops any lastValid at or below the discarded fraction
-  // gets (s1, 0) when the state there collides (setDiscardedLastValidFraction).
-  if (discardedPartCollides(s1, s2)) {
+  // (s1, 0) when the state at the discarded fraction collides (a planner
+  // that drops any lastValid at or below it, setDiscardedLastValidFraction),
+  // or, for other planners, the state one step into the edge: the first
+  // contact is then within one step of the start, and 0 is a bound as close
+  // as the one the search would return. A planner that extends up to
+  // lastValid (mdd_rrtconnect) starts most of its blocked edges a fraction of
+  // a step from an obstacle.
+  if (blockedEarly(s1, s2)) {
     setLastValid(*si_, s1, s2, 0.0, lastValid);
     countOmpl(false);
     return false;

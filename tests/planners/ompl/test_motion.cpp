@@ -355,6 +355,12 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
           ++shortcuts[k];
           EXPECT_EQ(on.second, 0.0) << where << " fraction " << f;
           EXPECT_EQ(last_on, s1) << where << " fraction " << f;
+        } else if (off.second == 0.0 && on.second > 0.0) {
+          // Without a discarded fraction, the first-step shortcut: both
+          // within the edge's first discrete step, below f either way.
+          const double step = 1.0 / fx.si->getStateSpace()->validSegmentCount(s1.get(), s2.get());
+          EXPECT_LE(on.second, step) << where << " fraction " << f;
+          EXPECT_LT(step, f) << where;
         } else {
           EXPECT_EQ(on.second, off.second) << where << " fraction " << f;
           EXPECT_EQ(last_on, last_off) << where << " fraction " << f;
@@ -370,6 +376,48 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
     EXPECT_GT(shortcuts[k], invalid / 10) << "fraction " << fractions[k];
     EXPECT_GT(kept[k], invalid / 10) << "fraction " << fractions[k];
   }
+}
+
+// Edges as a planner that extends up to lastValid makes them (mdd_rrtconnect):
+// each starts at the lastValid state of a blocked rotating edge, a fraction
+// of a discrete step from an obstacle. Most are blocked within their first
+// step, where lastValid is (s1, 0) after one state test (the first-step
+// shortcut); testing::checkEdge holds each to OMPL's contract and the dense
+// FCL check, and to a first contact within that step.
+TEST(LastValidFirstStep, EdgesFromABlockedEdgesLastValidKeepTheContract) {
+  int chained = 0, invalid = 0, shortcuts = 0, below_bound = 0;
+  for (const int index : {1, 2, 8}) {
+    const examples::ExampleScene& scene = testing::allScenes()[static_cast<std::size_t>(index)];
+    const Fixture fx = testing::makeFixture(scene);
+    testing::Rng rng(testing::seed() * 7727 + static_cast<std::uint64_t>(index));
+    const double extent = (scene.bounds.max() - scene.bounds.min()).head<2>().norm();
+    ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+    testing::EdgeTally tally;
+    for (int i = 0; i < 100 * testing::scale(); ++i) {
+      testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+      testing::randomEdgeEnd(*fx.space, s1.get(), 0.3 * extent, true, kPi, rng, s2.get());
+      std::pair<ob::State*, double> lv(last.get(), -1.0);
+      if (fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv) || lv.second == 0.0) continue;
+      // The next extension: from lastValid toward a new random target.
+      testing::randomEdgeEnd(*fx.space, last.get(), 0.3 * extent, true, kPi, rng, s2.get());
+      const int before = tally.edges - tally.valid;
+      testing::checkEdge(fx, last.get(), s2.get(), &tally);
+      ++chained;
+      invalid += tally.edges - tally.valid - before;
+    }
+    std::printf("%-10s chained %s\n", scene.name.c_str(), testing::describe(tally).c_str());
+    EXPECT_EQ(tally.misses, 0);
+    EXPECT_EQ(tally.early, 0);
+    shortcuts += tally.first_step;
+    below_bound += tally.first_step_below_bound;
+  }
+  std::printf("%d chained edges, %d invalid, %d by the first step (%d below the search's bound)\n", chained, invalid,
+              shortcuts, below_bound);
+  // Not a degenerate sample: the first step blocks many of them, not all;
+  // and the shortcut acts (a lastValid of 0 where the search's bound is not).
+  EXPECT_GT(shortcuts, invalid / 5);
+  EXPECT_LT(shortcuts, invalid);
+  EXPECT_GT(below_bound, 0);
 }
 
 TEST(LastValidDiscard, FractionOutsideZeroToOneIsRefused) {

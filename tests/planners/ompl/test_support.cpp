@@ -405,12 +405,13 @@ double fclBisect(const Fixture& fx, const ob::State* s1, const ob::State* s2, do
 }
 
 std::string describe(const EdgeTally& t) {
-  char line[400];
+  char line[480];
   std::snprintf(line, sizeof line,
                 "edges: %d, valid %d, misses %d, early %d, fractions checked %d (errors %d, grazing %d, FCL late %d, "
-                "worst %.2e), rotating false alarms %d, FCL samples %d",
+                "worst %.2e), rotating false alarms %d, lastValid by the first step %d (%d below the search's bound), "
+                "FCL samples %d",
                 t.edges, t.valid, t.misses, t.early, t.fraction_checked, t.fraction_errors, t.grazing, t.fcl_late,
-                t.worst_fraction_error, t.false_alarms, t.samples);
+                t.worst_fraction_error, t.false_alarms, t.first_step, t.first_step_below_bound, t.samples);
   return line;
 }
 
@@ -473,7 +474,19 @@ void checkEdge(const Fixture& fx, const ob::State* s1, const ob::State* s2, Edge
   EXPECT_GE(lv.second, 0.0) << edgeString(fx, s1, s2);
   EXPECT_LE(lv.second, bound.fraction) << edgeString(fx, s1, s2);
   EXPECT_TRUE(fx.si->isValid(last.get())) << "lastValid is not valid" << edgeString(fx, s1, s2);
-  if (lv.second < bound.fraction) {
+  // The first-step shortcut: on a rotating edge whose state one discrete
+  // step in collides, (s1, 0), within that step of the first contact (which
+  // the first-contact search must then find within the step too).
+  // Otherwise lastValid is the kLastValid search's bound, backed off.
+  const double step = 1.0 / std::max(1u, fx.si->getStateSpace()->validSegmentCount(s1, s2));
+  const bool first_step = motion.rotates() && mv.discardedLastValidFraction() == 0.0 && step < 1.0 &&
+                          lv.second == 0.0 && fx.mdd->collides(motion.pose(step));
+  if (first_step) {
+    ++tally->first_step;
+    tally->first_step_below_bound += bound.fraction > 1e-3 ? 1 : 0;
+    EXPECT_LE(first.fraction, step + 1e-12)
+        << "lastValid 0 by the first step, the first contact later" << edgeString(fx, s1, s2);
+  } else if (lv.second < bound.fraction) {
     EXPECT_LE(bound.fraction - lv.second, 1e-3)
         << "lastValid backed off far (" << lv.second << " vs " << bound.fraction << ")" << edgeString(fx, s1, s2);
   }

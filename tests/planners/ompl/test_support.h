@@ -144,7 +144,13 @@ struct EdgeTally {
   /// brute force (FCL's intersection test misses penetrations of ~1e-7)
   int fcl_late = 0;
   int false_alarms = 0;  ///< rotating edges: ours invalid, the dense check finds nothing
-  int samples = 0;       ///< states the dense FCL checks sampled
+  /// Invalid rotating edges whose lastValid is (s1, 0) with the state one
+  /// discrete step in colliding (the validator's first-step shortcut)
+  int first_step = 0;
+  /// Of those, the ones where the kLastValid search's bound is above 1e-3
+  /// (lastValid 0 there is the shortcut's, not the search's)
+  int first_step_below_bound = 0;
+  int samples = 0;  ///< states the dense FCL checks sampled
   double worst_fraction_error = 0.0;
 };
 /// The tally in one line (for the test's output).
@@ -157,8 +163,9 @@ std::string describe(const EdgeTally& t);
 ///    1e-4 of the edge) finds an invalid state that is not within
 ///    touchTolerance of touching on the brute force;
 ///  - an invalid edge whose lastValid is not a valid state at or before our
-///    first invalid fraction (within 1e-3 of it), or a valid edge whose
-///    lastValid is touched (OMPL's contract);
+///    first invalid fraction (within 1e-3 of it, or (s1, 0) by the first-step
+///    shortcut with the first contact within that step), or a valid edge
+///    whose lastValid is touched (OMPL's contract);
 ///  - an FCL collision before our first invalid fraction (exact or a bound);
 ///  - translation edges: a first contact more than 1e-9 of the edge from an
 ///    FCL bisection to 1e-13 (a touch FCL does not see counts as grazing, and

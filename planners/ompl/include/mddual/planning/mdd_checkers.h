@@ -96,7 +96,10 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     lastValid at or below d: KPIECE, BKPIECE, LBKPIECE, STRIDE), a rotating
 ///     edge whose state at d collides gets (copy of s1, 0) at once: what the
 ///     planner does with it is what it does with f - b, which is then at most
-///     d too.
+///     d too. Otherwise (d = 0) a rotating edge whose state one step into it
+///     (1 / validSegmentCount(s1, s2), on edges of two steps or more)
+///     collides gets (copy of s1, 0) at once: f = 0 is then within one step
+///     of the first contact, as promised above.
 ///   - s1 is not assumed valid: an edge whose start collides is invalid.
 ///   - checkMotion(s1, s2) (validity only) first tests s2, the middle state
 ///     and, on rotating edges, the quarters (mddual::intersect,
@@ -148,9 +151,10 @@ class MddMotionValidator : public ompl::base::MotionValidator {
 
  private:
   EdgeContact evaluate(const ompl::base::State* s1, const ompl::base::State* s2, EdgeQuery query) const;
-  /// The shortcut of setDiscardedLastValidFraction: a rotating edge whose
-  /// state at that fraction collides.
-  bool discardedPartCollides(const ompl::base::State* s1, const ompl::base::State* s2) const;
+  /// The shortcuts of checkMotion(s1, s2, lastValid): a rotating edge whose
+  /// state at the discarded fraction (setDiscardedLastValidFraction) or, when
+  /// that is 0, one step of OMPL's discrete check into the edge collides.
+  bool blockedEarly(const ompl::base::State* s1, const ompl::base::State* s2) const;
   void countOmpl(bool valid) const;
 
   PlanningSpacePtr space_;

@@ -476,48 +476,59 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
   ScratchLease s;
   PosedNodes posed(b, X_AB, margin_b, *s);
   s->stack.clear();
-  s->stack.emplace_back(a.root(), b.root());
   BvhStats local;
   bool completed = true;
-  while (!s->stack.empty()) {
-    const auto [na, nb] = s->stack.back();
+  // The pair visited next: a split pushes its second child pair and visits
+  // the first at once (the order of a push of both and a pop); a pair
+  // pruned or reported takes the next one from the stack.
+  int na = a.root(), nb = b.root();
+  const auto next = [&] {
+    if (s->stack.empty()) return false;
+    std::tie(na, nb) = s->stack.back();
     s->stack.pop_back();
+    return true;
+  };
+  for (;;) {
     const Bvh::Node& A = a.node(na);
     const Bvh::Node& B = b.node(nb);
-    const Posed& pb = posed.sphere(nb);
     ++local.node_pairs;
-    const double slack = kSatSlackRel * (A.scale + pb.scale);
-    if (spheresApart(A.centre, A.radius, pb.centre, pb.radius, slack)) continue;
-    posed.box(nb);
-    if (sweptAabbApart(A.box, pb.obb.centre_F, pb.aabb_half, Eigen::Vector3d::Zero(), 0.0, slack)) continue;
-    // The 15-axis test where it pays: at a leaf, or where A's box is much
-    // larger than its oriented box (a tilted slab of large flat triangles);
-    // near the roots of small trees it rarely prunes and cost the small
-    // scenes up to half their state-check time.
-    const bool obb_pays = A.isLeaf() || B.isLeaf() || obbMuchTighter(A.obb.half, 0.5 * A.box.sizes()) ||
-                          obbMuchTighter(pb.obb.half, pb.aabb_half);
-    // A triangle leaf of A: the exact triangle-box test in place of its box
-    // (which a large triangle fills only half of).
-    if (A.triangle >= 0) {
-      if (triangleObbApart(a.triangle(A.triangle), pb.obb, slack)) continue;
-    } else if (obb_pays && obbsDisjoint(A.obb, pb.obb, slack)) {
-      continue;
-    }
-    if (A.isLeaf() && B.isLeaf()) {
+    // The volume tests, cheapest first, B's box posed only when its sphere
+    // meets A's.
+    const auto apart = [&] {
+      const Posed& pb = posed.sphere(nb);
+      const double slack = kSatSlackRel * (A.scale + pb.scale);
+      if (spheresApart(A.centre, A.radius, pb.centre, pb.radius, slack)) return true;
+      posed.box(nb);
+      if (sweptAabbApart(A.box, pb.obb.centre_F, pb.aabb_half, Eigen::Vector3d::Zero(), 0.0, slack)) return true;
+      // A triangle leaf of A: the exact triangle-box test in place of its
+      // box (which a large triangle fills only half of).
+      if (A.triangle >= 0) return triangleObbApart(a.triangle(A.triangle), pb.obb, slack);
+      // The 15-axis test where it pays: at a leaf, or where A's box is much
+      // larger than its oriented box (a tilted slab of large flat
+      // triangles); near the roots of small trees it rarely prunes and cost
+      // the small scenes up to half their state-check time.
+      const bool obb_pays = A.isLeaf() || B.isLeaf() || obbMuchTighter(A.obb.half, 0.5 * A.box.sizes()) ||
+                            obbMuchTighter(pb.obb.half, pb.aabb_half);
+      return obb_pays && obbsDisjoint(A.obb, pb.obb, slack);
+    };
+    if (!apart()) {
+      if (!A.isLeaf() || !B.isLeaf()) {
+        if (descendA(A, B)) {
+          s->stack.emplace_back(A.right, nb);
+          na = A.left;
+        } else {
+          s->stack.emplace_back(na, B.right);
+          nb = B.left;
+        }
+        continue;
+      }
       ++local.leaf_pairs;
       if (!fn(a.leafPiece(na), b.leafPiece(nb))) {
         completed = false;
         break;
       }
-      continue;
     }
-    if (descendA(A, B)) {
-      s->stack.emplace_back(A.right, nb);
-      s->stack.emplace_back(A.left, nb);
-    } else {
-      s->stack.emplace_back(na, B.right);
-      s->stack.emplace_back(na, B.left);
-    }
+    if (!next()) break;
   }
   if (stats) {
     stats->node_pairs += local.node_pairs;

@@ -186,8 +186,8 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
   // (s1, 0) when the state at the discarded fraction collides (a planner
   // that drops any lastValid at or below it, setDiscardedLastValidFraction),
   // or, for other planners, the state one step into the edge: the first
-  // contact is then within one step of the start, and 0 is a bound as close
-  // as the one the search would return. A planner that extends up to
+  // contact is then within one step of the start, so 0 meets the search's
+  // one-step guarantee (the search may return a tighter bound). A planner that extends up to
   // lastValid (mdd_rrtconnect) starts most of its blocked edges a fraction of
   // a step from an obstacle.
   if (blockedEarly(s1, s2)) {

@@ -308,9 +308,11 @@ TEST_F(LastValid, CountersCountEveryCheck) {
 // A planner that drops every lastValid at or below a fraction (the
 // min_valid_path_fraction of KPIECE and STRIDE, 0.2 by default, and of BKPIECE
 // and LBKPIECE, 0.5): with the shortcut on, each of its decisions on random
-// rotating edges (valid; kept part; dropped) is the one it makes without, and
-// the shortcut's answer is (s1, 0) only where the state at the fraction
-// collides. Scenes: mesh (SE(3)), planar (SE(2)), trap (SE(3)).
+// rotating edges (valid; kept part; dropped) is the one it makes with no
+// discarded fraction (the search, or the first-step shortcut where the state
+// one step in collides), and the shortcut's answer is (s1, 0) only where the
+// state at the fraction collides. Scenes: mesh (SE(3)), planar (SE(2)), trap
+// (SE(3)).
 TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
   const std::array<double, 2> fractions{0.2, 0.5};
   std::array<int, 2> shortcuts{0, 0}, kept{0, 0};
@@ -356,9 +358,13 @@ TEST(LastValidDiscard, APlannerDecidesAsWithoutTheShortcut) {
           EXPECT_EQ(on.second, 0.0) << where << " fraction " << f;
           EXPECT_EQ(last_on, s1) << where << " fraction " << f;
         } else if (off.second == 0.0 && on.second > 0.0) {
-          // Without a discarded fraction, the first-step shortcut: both
-          // within the edge's first discrete step, below f either way.
-          const double step = 1.0 / fx.si->getStateSpace()->validSegmentCount(s1.get(), s2.get());
+          // Without a discarded fraction, the first-step shortcut (and only
+          // it: the state one step in collides): both within the edge's
+          // first discrete step, below f either way.
+          const unsigned int steps = fx.si->getStateSpace()->validSegmentCount(s1.get(), s2.get());
+          ASSERT_GE(steps, 2u) << where;
+          const double step = 1.0 / steps;
+          EXPECT_TRUE(fx.mdd->collides(fx.space->motion(s1.get(), s2.get()).pose(step))) << where;
           EXPECT_LE(on.second, step) << where << " fraction " << f;
           EXPECT_LT(step, f) << where;
         } else {
@@ -418,6 +424,50 @@ TEST(LastValidFirstStep, EdgesFromABlockedEdgesLastValidKeepTheContract) {
   EXPECT_GT(shortcuts, invalid / 5);
   EXPECT_LT(shortcuts, invalid);
   EXPECT_GT(below_bound, 0);
+}
+
+// One such edge, pinned (the mesh scene, found by the test above): the state
+// one step in (1/88 of the edge) collides, so lastValid is (s1, 0); the
+// kLastValid search's bound (0.00225) and the first contact (0.00671) lie
+// within that step. With a discarded fraction set (here 1e-9, whose state is
+// free) the first-step shortcut is off and lastValid is the search's bound,
+// backed off: the 0 above is the shortcut's.
+TEST(LastValidFirstStep, PinnedEdgeBlockedInItsFirstStepKeepsItsStart) {
+  const Fixture fx = testing::makeFixture(testing::allScenes()[1]);
+  ASSERT_EQ(fx.scene.name, "mesh");
+  ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+  const auto pose = [](double x, double y, double z, double qw, double qx, double qy, double qz) {
+    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+    X.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
+    X.translation() << x, y, z;
+    return X;
+  };
+  fx.space->setPose(pose(-1.8005309539688028, -8.8119905959946614, 1.0556007870172381, 0.76698515544302048,
+                         0.018718895577888771, -0.62250922365943151, 0.15448508257214277),
+                    s1.get());
+  fx.space->setPose(pose(0.78855840755691808, -11.0984887032596, -3.8113636368144341, 0.62189452719405924,
+                         0.33858634871090715, 0.31017729783866244, -0.63434732238593028),
+                    s2.get());
+  const double step = 1.0 / fx.si->getStateSpace()->validSegmentCount(s1.get(), s2.get());
+  const EdgeMotion motion = fx.space->motion(s1.get(), s2.get());
+  ASSERT_TRUE(motion.rotates());
+  ASSERT_TRUE(fx.si->isValid(s1.get()));
+  ASSERT_TRUE(fx.mdd->collides(motion.pose(step)));
+  const EdgeContact first = fx.mdd_motion->firstInvalid(s1.get(), s2.get());
+  const EdgeContact bound = fx.mdd_motion->firstInvalid(s1.get(), s2.get(), EdgeQuery::kLastValid);
+  EXPECT_GT(bound.fraction, 1e-3);
+  EXPECT_LE(bound.fraction, first.fraction);
+  EXPECT_LE(first.fraction, step);
+  std::pair<ob::State*, double> lv(last.get(), -1.0);
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv));
+  EXPECT_EQ(lv.second, 0.0);
+  EXPECT_EQ(last, s1);
+  fx.mdd_motion->setDiscardedLastValidFraction(1e-9);
+  std::pair<ob::State*, double> lv_search(last.get(), -1.0);
+  EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), lv_search));
+  fx.mdd_motion->setDiscardedLastValidFraction(0.0);
+  EXPECT_GT(lv_search.second, 0.0);
+  EXPECT_LE(lv_search.second, bound.fraction);
 }
 
 TEST(LastValidDiscard, FractionOutsideZeroToOneIsRefused) {

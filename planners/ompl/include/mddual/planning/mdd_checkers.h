@@ -97,8 +97,9 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     edge whose state at d collides gets (copy of s1, 0) at once: what the
 ///     planner does with it is what it does with f - b, which is then at most
 ///     d too. Otherwise (d = 0) a rotating edge whose state one step into it
-///     (1 / validSegmentCount(s1, s2), on edges of two steps or more)
-///     collides gets (copy of s1, 0) at once: f = 0 is then within one step
+///     (1 / validSegmentCount(s1, s2), on edges of two steps or more whose
+///     s2 has its rotations within their bounds) collides gets (copy of s1,
+///     0) at once: f = 0 is then within one step
 ///     of the first contact, as promised above.
 ///   - s1 is not assumed valid: an edge whose start collides is invalid.
 ///   - checkMotion(s1, s2) (validity only) first tests s2, the middle state
@@ -122,7 +123,8 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   /// The first invalid fraction of an edge (bounds included) and its contact
   /// (MddScene::checkEdge's EdgeQuery::kFirstContact). fraction = +inf for a
   /// valid edge. With query = kLastValid: the bound that checkMotion(s1, s2,
-  /// lastValid) backs off from (another lower bound, usually coarser).
+  /// lastValid) backs off from (another lower bound, usually coarser), unless
+  /// one of its shortcuts gives (s1, 0) first (class comment).
   /// Throws InvalidInputError for kValidity (not a contact query).
   EdgeContact firstInvalid(const ompl::base::State* s1, const ompl::base::State* s2,
                            EdgeQuery query = EdgeQuery::kFirstContact) const;
@@ -143,7 +145,8 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   /// would have: the first contact is before that state, so the true bound
   /// would be at most `fraction` too. The contract above holds ((s1, 0) as
   /// for a colliding start; the verdict is the same). 0, the default, turns
-  /// it off; translation edges never take it (their exact sweep costs about
+  /// it off (the first-step shortcut of the class comment applies instead);
+  /// translation edges never take it (their exact sweep costs about
   /// what the state test costs). Throws InvalidInputError outside [0, 1].
   /// Set it between planner runs, not during one.
   void setDiscardedLastValidFraction(double fraction);

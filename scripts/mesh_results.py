@@ -62,7 +62,8 @@ def per_check(rows):
 
 
 def verdict(mdd, fcl):
-    return mdd["ratio"] is not None and mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
+    """The planning target: at most half of FCL's median (a NaN ratio fails) at the same or better success."""
+    return mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
 
 
 def repeats(repeat_dir, command, marker="mesh-repeats"):

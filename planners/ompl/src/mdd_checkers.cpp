@@ -187,9 +187,9 @@ bool MddMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
   // that drops any lastValid at or below it, setDiscardedLastValidFraction),
   // or, for other planners, the state one step into the edge: the first
   // contact is then within one step of the start, so 0 meets the search's
-  // one-step guarantee (the search may return a tighter bound). A planner that extends up to
-  // lastValid (mdd_rrtconnect) starts most of its blocked edges a fraction of
-  // a step from an obstacle.
+  // one-step guarantee (the search may return a tighter bound). A planner
+  // that extends up to lastValid (mdd_rrtconnect) starts most of its blocked
+  // edges a fraction of a step from an obstacle.
   if (blockedEarly(s1, s2)) {
     setLastValid(*si_, s1, s2, 0.0, lastValid);
     countOmpl(false);

@@ -33,9 +33,9 @@
 // the step of OMPL's discrete check of that edge; 1 by default: a blocked
 // extension gaining less than that adds nothing; with MDD-DUAL's validator a
 // rotating edge blocked within its first step returns lastValid 0, so a
-// value below 1 keeps no more of those edges than 1 does), "rotate_first" (1: the
-// two-edge extension where the space allows it; 0, the default: straight
-// edges everywhere). Rotating first was the default for a while; it made the
+// value below 1 keeps no more of those edges than 1 does), "rotate_first"
+// (1: the two-edge extension where the space allows it; 0, the default:
+// straight edges everywhere). Rotating first was the default for a while; it made the
 // planner about 10x slower on the SE(2) maze and the SE(3) cubicles (README,
 // "The benchmark"), so it is off.
 //

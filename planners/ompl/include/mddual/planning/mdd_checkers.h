@@ -99,8 +99,8 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     d too. Otherwise (d = 0) a rotating edge whose state one step into it
 ///     (1 / validSegmentCount(s1, s2), on edges of two steps or more whose
 ///     s2 has its rotations within their bounds) collides gets (copy of s1,
-///     0) at once: f = 0 is then within one step
-///     of the first contact, as promised above.
+///     0) at once: f = 0 is then within one step of the first contact, as
+///     promised above.
 ///   - s1 is not assumed valid: an edge whose start collides is invalid.
 ///   - checkMotion(s1, s2) (validity only) first tests s2, the middle state
 ///     and, on rotating edges, the quarters (mddual::intersect,

@@ -42,6 +42,8 @@ struct Interval {
   Eigen::Vector3d v_W;      ///< p(tb) - p(ta)
   double half_angle = 0.0;  ///< (tb - ta) / 2 * angle
   double sin_half = 0.0;    ///< sin(half_angle)
+  Eigen::Vector3d u_W;      ///< unit direction of v_W (zero when v_W is zero)
+  double length = 0.0;      ///< |v_W|
 };
 
 /// Whether a triple's volumes without the motion growth e would clear it
@@ -176,6 +178,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     I.v_W = motion.position(tb) - I.X_WI.translation();
     I.half_angle = 0.5 * (tb - ta) * motion.angle;
     I.sin_half = std::sin(I.half_angle);
+    I.length = I.v_W.norm();
+    I.u_W = unitOrZero(I.v_W, I.length);
     intervals.push_back(I);
     return static_cast<int>(intervals.size()) - 1;
   };
@@ -223,6 +227,22 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const Eigen::Vector3d& u_W = posed.u_W;
     const double slack =
         kBvhSlackRel * (M.scale + posed.sweep.X_WR_start.translation().cwiseAbs().maxCoeff() + N.scale + e + length);
+    // N's points lie within N.max_norm of the body origin at every
+    // orientation (times 1 + kSlerpRoundoffRel: OMPL's slerp of quaternions
+    // a little off unit norm): over I, within that distance of the segment
+    // p(ta) -> p(tb), with no growth from the rotation. Tighter than N's
+    // sphere grown by e once e exceeds the origin's offset from that sphere
+    // (a long turn's coarse triples). Measured (benchmarks/planning, 400
+    // rotating edges, --cpu): validity checks 5% to 15% less time on
+    // twistycool, bugtrap and cubicles_mesh.
+    const double r0 = N.max_norm * (1.0 + kSlerpRoundoffRel);
+    if (r0 < r) {
+      const Eigen::Vector3d& p_W = I.X_WI.translation();
+      const double s0 = I.length > 0.0 ? std::clamp((M.centre - p_W).dot(I.u_W), 0.0, I.length) : 0.0;
+      const double reach0 = r0 + M.radius + slack;
+      if ((p_W + s0 * I.u_W - M.centre).squaredNorm() > reach0 * reach0) return kInf;
+      if (sweptSphereObbApart(M.obb, p_W, r0, I.v_W, slack)) return kInf;
+    }
     const double s = length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(u_W), 0.0, length) : 0.0;
     const double reach = r + M.radius + slack;
     if ((posed.c_W + s * u_W - M.centre).squaredNorm() > reach * reach) return kInf;

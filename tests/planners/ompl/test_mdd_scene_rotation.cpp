@@ -327,5 +327,43 @@ TEST(RotatingSearchEnds, FinestEnlargementBelowTheRoundOffGrowth) {
   EXPECT_FALSE(far.checkEdge(m, EdgeQuery::kValidity).collides);
 }
 
+// A rod of radius 1 about the body origin turning by pi in place: every
+// orientation keeps it within about 1 of the origin, so an obstacle at 1.04
+// from the origin in the plane of the turn is never touched and the root
+// triple is cleared by the origin's sphere at once (the rod's sphere grown
+// by the turn, 1 + pi / 2, reaches it: without that test, 23 triples);
+// an obstacle at 0.97 is swept through by the rod's tip at a quarter turn.
+TEST(OriginSphere, ClearsATurnInPlaceAtOnceAndMissesNoContact) {
+  std::vector<scene::Piece> rod;
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::Isometry3d X_RB(Eigen::Translation3d(-0.95 + 0.1 * i, 0.0, 0.0));
+    rod.push_back(scene::boxPiece(Eigen::Vector3d::Constant(0.1), X_RB, "rod cube " + std::to_string(i)));
+  }
+  const auto robot = std::make_shared<scene::RigidBody>(rod, "rod");
+  const auto obstacleAt = [](double y) {
+    const Eigen::Isometry3d X_WO(Eigen::Translation3d(0.0, y, 0.0));
+    return std::make_shared<scene::World>(
+        std::vector<scene::Piece>{scene::boxPiece(Eigen::Vector3d::Constant(0.02), X_WO, "obstacle")}, "world");
+  };
+  const EdgeMotion m = turnAboutZ(0.0, kPi);
+  const MddScene far(robot, obstacleAt(1.05));
+  for (const EdgeQuery q : {EdgeQuery::kValidity, EdgeQuery::kFirstContact, EdgeQuery::kLastValid}) {
+    const EdgeContact c = far.checkEdge(m, q);
+    EXPECT_FALSE(c.collides) << "query " << static_cast<int>(q);
+    EXPECT_EQ(c.sub_edges, 1) << "query " << static_cast<int>(q);
+  }
+  const MddScene near(robot, obstacleAt(0.98));
+  double first = kInf;  // the dense check's first colliding state
+  for (int k = 0; k <= 20000 && !(first < kInf); ++k) {
+    if (near.collides(m.pose(k / 20000.0))) first = k / 20000.0;
+  }
+  ASSERT_LT(first, 0.5);
+  EXPECT_TRUE(near.checkEdge(m, EdgeQuery::kValidity).collides);
+  const EdgeContact contact = near.checkEdge(m, EdgeQuery::kFirstContact);
+  EXPECT_TRUE(contact.collides);
+  EXPECT_LE(contact.fraction, first);
+  EXPECT_GT(contact.fraction, first - 0.01);
+}
+
 }  // namespace
 }  // namespace mddual::planning

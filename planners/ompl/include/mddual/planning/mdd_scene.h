@@ -52,13 +52,18 @@
 //      separating-axis tests, exact for each pair of volumes), or when N's
 //      swept sphere misses M's oriented box along one of that box's face
 //      axes (sweptSphereObbApart: a sphere that meets the box meets it on
-//      every axis): then no piece of N touches a piece of M at any time of I.
-//      Otherwise it is split into two triples that cover it: I halved, or
-//      the larger of N and M replaced by its children (which of them is a
-//      matter of speed, not soundness: mdd_scene_rotation.cpp). The swept
-//      oriented boxes meet only for s in [s_lo, s_hi], so every contact in
-//      the triple lies at t in [ta + (tb - ta) s_lo / |v|, ta + (tb - ta)
-//      s_hi / |v|]: a half of I outside that window is dropped, not split.
+//      every axis), or when the sphere of radius max_norm(N) (the largest
+//      distance of N's points from the body origin) centred at p(ta) and
+//      swept along v misses M's sphere or oriented box: N's points lie in it
+//      at every orientation, so it needs no growth e, and clears far
+//      triples of long turns without splitting them: then no piece of N
+//      touches a piece of M at any time of I. Otherwise it is split into two
+//      triples that cover it: I halved, or the larger of N and M replaced by
+//      its children (which of them is a matter of speed, not soundness:
+//      mdd_scene_rotation.cpp). The swept oriented boxes meet only for s in
+//      [s_lo, s_hi], so every contact in the triple lies at t in [ta + (tb -
+//      ta) s_lo / |v|, ta + (tb - ta) s_hi / |v|]: a half of I outside that
+//      window is dropped, not split.
 //      A pair of leaves (robot piece i, world piece j) with e <= delta is
 //      checked with the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
 //      <= refinement_levels with delta_k >= e (enlargePiece: it holds every

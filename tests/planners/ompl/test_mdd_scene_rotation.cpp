@@ -327,12 +327,14 @@ TEST(RotatingSearchEnds, FinestEnlargementBelowTheRoundOffGrowth) {
   EXPECT_FALSE(far.checkEdge(m, EdgeQuery::kValidity).collides);
 }
 
-// A rod of radius 1 about the body origin turning by pi in place: every
-// orientation keeps it within about 1 of the origin, so an obstacle at 1.04
-// from the origin in the plane of the turn is never touched and the root
-// triple is cleared by the origin's sphere at once (the rod's sphere grown
-// by the turn, 1 + pi / 2, reaches it: without that test, 23 triples);
-// an obstacle at 0.97 is swept through by the rod's tip at a quarter turn.
+// A rod of half length 1 centred at the body origin turning by pi in place:
+// every orientation keeps it within about 1 of the origin, so an obstacle
+// whose near face is at 1.04 from the origin (centre 1.05) in the plane of
+// the turn is never touched, and the root triple is cleared by the origin's
+// sphere at once (the rod's sphere grown by the turn, 1 + pi / 2, reaches it:
+// without that test, 23 triples). An obstacle centred at 0.98 at the polar
+// angle 7 pi / 16 is swept by the rod's tip near t = 7 / 16, between the
+// probe states, so the validity search is the one that finds it.
 TEST(OriginSphere, ClearsATurnInPlaceAtOnceAndMissesNoContact) {
   std::vector<scene::Piece> rod;
   for (int i = 0; i < 20; ++i) {
@@ -340,25 +342,30 @@ TEST(OriginSphere, ClearsATurnInPlaceAtOnceAndMissesNoContact) {
     rod.push_back(scene::boxPiece(Eigen::Vector3d::Constant(0.1), X_RB, "rod cube " + std::to_string(i)));
   }
   const auto robot = std::make_shared<scene::RigidBody>(rod, "rod");
-  const auto obstacleAt = [](double y) {
-    const Eigen::Isometry3d X_WO(Eigen::Translation3d(0.0, y, 0.0));
+  const auto obstacleAt = [](double radius, double polar_angle) {
+    const Eigen::Isometry3d X_WO(
+        Eigen::Translation3d(radius * std::cos(polar_angle), radius * std::sin(polar_angle), 0.0));
     return std::make_shared<scene::World>(
         std::vector<scene::Piece>{scene::boxPiece(Eigen::Vector3d::Constant(0.02), X_WO, "obstacle")}, "world");
   };
   const EdgeMotion m = turnAboutZ(0.0, kPi);
-  const MddScene far(robot, obstacleAt(1.05));
+  const MddScene far(robot, obstacleAt(1.05, kPi / 2.0));
   for (const EdgeQuery q : {EdgeQuery::kValidity, EdgeQuery::kFirstContact, EdgeQuery::kLastValid}) {
     const EdgeContact c = far.checkEdge(m, q);
     EXPECT_FALSE(c.collides) << "query " << static_cast<int>(q);
     EXPECT_EQ(c.sub_edges, 1) << "query " << static_cast<int>(q);
   }
-  const MddScene near(robot, obstacleAt(0.98));
+  const MddScene near(robot, obstacleAt(0.98, 7.0 * kPi / 16.0));
   double first = kInf;  // the dense check's first colliding state
   for (int k = 0; k <= 20000 && !(first < kInf); ++k) {
     if (near.collides(m.pose(k / 20000.0))) first = k / 20000.0;
   }
-  ASSERT_LT(first, 0.5);
-  EXPECT_TRUE(near.checkEdge(m, EdgeQuery::kValidity).collides);
+  ASSERT_GT(first, 0.4);
+  ASSERT_LT(first, 0.4375);
+  for (const double t : {0.25, 0.5, 0.75, 1.0}) EXPECT_FALSE(near.collides(m.pose(t))) << "probe state " << t;
+  const EdgeContact validity = near.checkEdge(m, EdgeQuery::kValidity);
+  EXPECT_TRUE(validity.collides);
+  EXPECT_GT(validity.sub_edges, 1);
   const EdgeContact contact = near.checkEdge(m, EdgeQuery::kFirstContact);
   EXPECT_TRUE(contact.collides);
   EXPECT_LE(contact.fraction, first);

@@ -53,11 +53,12 @@
 //      swept sphere misses M's oriented box along one of that box's face
 //      axes (sweptSphereObbApart: a sphere that meets the box meets it on
 //      every axis), or when the sphere of radius max_norm(N) (the largest
-//      distance of N's points from the body origin) centred at p(ta) and
-//      swept along v misses M's sphere or oriented box: N's points lie in it
-//      at every orientation, so it needs no growth e, and clears far
-//      triples of long turns without splitting them: then no piece of N
-//      touches a piece of M at any time of I. Otherwise it is split into two
+//      distance of N's points from the body origin; times 1 + 1e-8, the
+//      slerp round-off below) centred at p(ta) and swept along v misses M's
+//      sphere or oriented box (N's points lie in it at every orientation, so
+//      it needs no growth e: it clears far triples of long turns without
+//      splitting them). Then no piece of N touches a piece of M at any time
+//      of I. Otherwise it is split into two
 //      triples that cover it: I halved, or the larger of N and M replaced by
 //      its children (which of them is a matter of speed, not soundness:
 //      mdd_scene_rotation.cpp). The swept oriented boxes meet only for s in

@@ -227,6 +227,20 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     const Eigen::Vector3d& u_W = posed.u_W;
     const double slack =
         kBvhSlackRel * (M.scale + posed.sweep.X_WR_start.translation().cwiseAbs().maxCoeff() + N.scale + e + length);
+    // Whether a sphere of radius rs centred at c_W, swept by s u_W for s in
+    // [0, len] (v_W = len u_W), misses M's sphere, then M's box (a node of
+    // large flat triangles has a thin box in a wide sphere). The box test
+    // before N's box is posed: callgrind (RRT-Connect's recorded checks,
+    // MDD's checkEdge) bugtrap -6.1%, twistycool -0.8%, the apartment +0.6%
+    // (its checks are mostly state checks; see the README's account for the
+    // variants tried).
+    const auto sphereMisses = [&](const Eigen::Vector3d& c_W, double rs, const Eigen::Vector3d& dir_W, double len,
+                                  const Eigen::Vector3d& v_W) {
+      const double s = len > 0.0 ? std::clamp((M.centre - c_W).dot(dir_W), 0.0, len) : 0.0;
+      const double reach = rs + M.radius + slack;
+      return (c_W + s * dir_W - M.centre).squaredNorm() > reach * reach ||
+             sweptSphereObbApart(M.obb, c_W, rs, v_W, slack);
+    };
     // N's points lie within N.max_norm of the body origin at every
     // orientation (times 1 + kSlerpRoundoffRel: OMPL's slerp of quaternions
     // a little off unit norm): over I, within that distance of the segment
@@ -236,22 +250,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // rotating edges, --cpu): validity checks 5% to 20% less time on
     // twistycool, bugtrap, cubicles_mesh and the mesh scene.
     const double r0 = N.max_norm * (1.0 + kSlerpRoundoffRel);
-    if (r0 < r) {
-      const Eigen::Vector3d& p_W = I.X_WI.translation();
-      const double s0 = I.length > 0.0 ? std::clamp((M.centre - p_W).dot(I.u_W), 0.0, I.length) : 0.0;
-      const double reach0 = r0 + M.radius + slack;
-      if ((p_W + s0 * I.u_W - M.centre).squaredNorm() > reach0 * reach0) return kInf;
-      if (sweptSphereObbApart(M.obb, p_W, r0, I.v_W, slack)) return kInf;
-    }
-    const double s = length > 0.0 ? std::clamp((M.centre - posed.c_W).dot(u_W), 0.0, length) : 0.0;
-    const double reach = r + M.radius + slack;
-    if ((posed.c_W + s * u_W - M.centre).squaredNorm() > reach * reach) return kInf;
-    // The same swept sphere against M's box (a node of large flat triangles
-    // has a thin box in a wide sphere), before N's box is posed. Callgrind
-    // (RRT-Connect's recorded checks, MDD's checkEdge): bugtrap -6.1%,
-    // twistycool -0.8%, the apartment +0.6% (its checks are mostly state
-    // checks; see the README's account for the variants tried).
-    if (sweptSphereObbApart(M.obb, posed.c_W, r, posed.sweep.v_W, slack)) return kInf;
+    if (r0 < r && sphereMisses(I.X_WI.translation(), r0, I.u_W, I.length, I.v_W)) return kInf;
+    if (sphereMisses(posed.c_W, r, u_W, length, posed.sweep.v_W)) return kInf;
     if (!posed.has_box) {
       posed.box_W = rotationSweptBox(N.obb, posed.sweep.X_WR_start, axis_R, posed.sweep.across, posed.sweep.any);
       posed.has_box = true;

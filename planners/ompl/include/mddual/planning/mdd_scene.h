@@ -58,10 +58,9 @@
 //      sphere or oriented box (N's points lie in it at every orientation, so
 //      it needs no growth e: it clears far triples of long turns without
 //      splitting them). Then no piece of N touches a piece of M at any time
-//      of I. Otherwise it is split into two
-//      triples that cover it: I halved, or the larger of N and M replaced by
-//      its children (which of them is a matter of speed, not soundness:
-//      mdd_scene_rotation.cpp). The swept oriented boxes meet only for s in
+//      of I. Otherwise it is split into two triples that cover it: I
+//      halved, or the larger of N and M replaced by its children (which of
+//      them is a matter of speed, not soundness: mdd_scene_rotation.cpp). The swept oriented boxes meet only for s in
 //      [s_lo, s_hi], so every contact in the triple lies at t in [ta + (tb -
 //      ta) s_lo / |v|, ta + (tb - ta) s_hi / |v|]: a half of I outside that
 //      window is dropped, not split.

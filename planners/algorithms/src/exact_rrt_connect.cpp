@@ -24,6 +24,8 @@ ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planne
   Planner::declareParam<double>("range", this, &ExactRRTConnect::setRange, &ExactRRTConnect::getRange, "0.:1.:10000.");
   Planner::declareParam<double>("min_progress", this, &ExactRRTConnect::setMinProgress,
                                 &ExactRRTConnect::getMinProgress, "0.:0.1:100.");
+  Planner::declareParam<double>("probe_steps", this, &ExactRRTConnect::setProbeSteps, &ExactRRTConnect::getProbeSteps,
+                                "0.:1.:100.");
   Planner::declareParam<bool>("rotate_first", this, &ExactRRTConnect::setRotateFirst, &ExactRRTConnect::getRotateFirst,
                               "0,1");
 }
@@ -55,6 +57,14 @@ void ExactRRTConnect::setMinProgress(double steps) {
     throw InvalidInputError("ExactRRTConnect: min_progress must be a finite number of steps >= 0, got " + text(steps));
   }
   min_progress_ = steps;
+}
+
+void ExactRRTConnect::setProbeSteps(double steps) {
+  if (!(steps >= 0.0) || !std::isfinite(steps)) {
+    throw InvalidInputError("ExactRRTConnect: probe_steps must be a finite number of steps >= 0 (0: no probe), got " +
+                            text(steps));
+  }
+  probe_steps_ = steps;
 }
 
 ExactRRTConnect::~ExactRRTConnect() {
@@ -135,6 +145,19 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
   ob::State* last = si_->allocState();
   std::pair<ob::State*, double> last_valid(last, 0.0);
   Motion* added = nullptr;
+  const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(from->state, to));
+  // 1. The probe: the state probe_steps steps in. When it collides the edge
+  //    is blocked within them, and the extension ends without its motion
+  //    check (the header says why).
+  if (probe_steps_ > 0.0 && probe_steps_ < steps) {
+    si_->getStateSpace()->interpolate(from->state, to, probe_steps_ / steps, last);
+    if (!si_->isValid(last)) {
+      si_->freeState(last);
+      return nullptr;
+    }
+  }
+  // 2. The motion check; a blocked edge is kept up to lastValid when that is
+  //    progress.
   if (si_->checkMotion(from->state, to, last_valid)) {
     added = addMotion(tree, from, to);
     *reached = true;
@@ -144,7 +167,6 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
     // the fraction: OMPL's discrete validator keeps whole steps (j / steps),
     // and a gain of exactly min_progress steps must not be lost to the
     // round-off of a distance comparison (kStepRoundoff).
-    const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(from->state, to));
     if (last_valid.second * steps >= min_progress_ * (1.0 - kStepRoundoff)) added = addMotion(tree, from, last);
   }
   si_->freeState(last);

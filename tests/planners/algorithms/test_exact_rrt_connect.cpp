@@ -240,12 +240,14 @@ class ShortGainValidator : public ob::MotionValidator {
 /// condition, every motion blocked after `gain_steps` steps, min_progress
 /// set to `min_progress` steps; *checks: the motion checks made.
 unsigned statesWithShortGains(og::SimpleSetup ss, double gain_steps, double min_progress, int* checks,
-                              bool rotate_first = false) {
+                              bool rotate_first = false, double probe_steps = 4.0) {
   ompl::RNG::setSeed(13);
   const ob::SpaceInformationPtr& si = ss.getSpaceInformation();
   auto planner = std::make_shared<ExactRRTConnect>(si);
   EXPECT_DOUBLE_EQ(planner->getMinProgress(), 1.0);  // the default: one step
+  EXPECT_DOUBLE_EQ(planner->getProbeSteps(), 4.0);   // the default: four steps
   planner->setMinProgress(min_progress);
+  planner->setProbeSteps(probe_steps);
   planner->setRotateFirst(rotate_first);
   ss.setPlanner(planner);
   ss.setup();
@@ -273,6 +275,40 @@ TEST(ExactRRTConnect, BlockedExtensionsShorterThanMinProgressStepsAddNothing) {
   const unsigned states = statesWithShortGains(makeSetup(), 1.0, 1.0, &checks);
   EXPECT_GT(checks, 10);
   EXPECT_EQ(states, 2u + static_cast<unsigned>(checks));
+}
+
+TEST(ExactRRTConnect, AProbeStateThatCollidesEndsTheExtensionWithoutAMotionCheck) {
+  // Every state but the start and the goal collides: each extension's probe
+  // (four steps in) says so, and no motion check is made. Without the probe
+  // (0) the validator is asked.
+  const auto walled = [] {
+    og::SimpleSetup ss = makeSetup();
+    ss.setStateValidityChecker([](const ob::State* s) {
+      const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+      return v->values[1] == 1.0 && (v->values[0] == 1.0 || v->values[0] == 9.0);
+    });
+    return ss;
+  };
+  int checks = -1;
+  EXPECT_EQ(statesWithShortGains(walled(), 5.0, 1.0, &checks), 2u);
+  EXPECT_EQ(checks, 0);
+  EXPECT_GT(statesWithShortGains(walled(), 5.0, 1.0, &checks, false, 0.0), 10u);
+  EXPECT_GT(checks, 10);
+}
+
+TEST(ExactRRTConnect, AProbeStateThatIsFreeChangesNothing) {
+  // Nothing collides: the trees grow exactly as without the probe (it draws
+  // no random numbers), with the same motion checks.
+  const auto open = [] {
+    og::SimpleSetup ss = makeSetup();
+    ss.setStateValidityChecker([](const ob::State*) { return true; });
+    return ss;
+  };
+  int with_probe = 0, without = 0;
+  const unsigned states = statesWithShortGains(open(), 5.0, 1.0, &with_probe);
+  EXPECT_GT(with_probe, 10);
+  EXPECT_EQ(states, statesWithShortGains(open(), 5.0, 1.0, &without, false, 0.0));
+  EXPECT_EQ(with_probe, without);
 }
 
 TEST(ExactRRTConnect, MinProgressCountsTheEdgesOwnSteps) {
@@ -304,8 +340,10 @@ TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
   for (const double bad : {-1.0, std::nan("")}) {
     EXPECT_THROW(planner.setRange(bad), InvalidInputError) << bad;
     EXPECT_THROW(planner.setMinProgress(bad), InvalidInputError) << bad;
+    EXPECT_THROW(planner.setProbeSteps(bad), InvalidInputError) << bad;
   }
   EXPECT_THROW(planner.setMinProgress(HUGE_VAL), InvalidInputError);
+  EXPECT_THROW(planner.setProbeSteps(HUGE_VAL), InvalidInputError);
   try {
     planner.setMinProgress(-0.5);
     ADD_FAILURE() << "-0.5 accepted";
@@ -314,6 +352,7 @@ TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
   }
   EXPECT_DOUBLE_EQ(planner.getRange(), 0.0);  // unchanged by the refused values
   EXPECT_DOUBLE_EQ(planner.getMinProgress(), 1.0);
+  EXPECT_DOUBLE_EQ(planner.getProbeSteps(), 4.0);
   planner.setRange(HUGE_VAL);  // an infinite range is no limit, as 0
   planner.setMinProgress(0.0);
   EXPECT_EQ(planner.getMinProgress(), 0.0);

@@ -146,9 +146,9 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
   std::pair<ob::State*, double> last_valid(last, 0.0);
   Motion* added = nullptr;
   const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(from->state, to));
-  // 1. The probe: the state probe_steps steps in. When it collides the edge
-  //    is blocked within them, and the extension ends without its motion
-  //    check (the header says why).
+  // 1. The probe (edges longer than probe_steps steps): the state
+  //    probe_steps steps in. When it collides the edge is blocked within
+  //    them and adds nothing, without its motion check (the header says why).
   if (probe_steps_ > 0.0 && probe_steps_ < steps) {
     si_->getStateSpace()->interpolate(from->state, to, probe_steps_ / steps, last);
     if (!si_->isValid(last)) {

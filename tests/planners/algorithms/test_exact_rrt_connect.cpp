@@ -296,6 +296,33 @@ TEST(ExactRRTConnect, AProbeStateThatCollidesEndsTheExtensionWithoutAMotionCheck
   EXPECT_GT(checks, 10);
 }
 
+TEST(ExactRRTConnect, TheProbeIsProbeStepsIntoTheEdge) {
+  // Free only within 3.5 steps (of the edge's length over validSegmentCount:
+  // 0.001 of the maximum extent, sqrt(200), at most) of the start and the
+  // goal, the only tree states while every probe collides. Every edge starts
+  // at one of them: a probe 4 steps in (at most, and at least 4 (1 - s / d)
+  // steps for an edge of length d and step s) collides, one 3 steps in does
+  // not (then the validator keeps 5 steps of the edge, and edges from there
+  // probe outside the disks).
+  const double step = 0.001 * std::sqrt(200.0);
+  const auto disks = [step] {
+    og::SimpleSetup ss = makeSetup();
+    ss.setStateValidityChecker([step](const ob::State* s) {
+      const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+      const double y = v->values[1] - 1.0;
+      const double to_start = std::hypot(v->values[0] - 1.0, y);
+      const double to_goal = std::hypot(v->values[0] - 9.0, y);
+      return std::min(to_start, to_goal) < 3.5 * step;
+    });
+    return ss;
+  };
+  int checks = -1;
+  EXPECT_EQ(statesWithShortGains(disks(), 5.0, 1.0, &checks), 2u);
+  EXPECT_EQ(checks, 0);
+  EXPECT_GT(statesWithShortGains(disks(), 5.0, 1.0, &checks, false, 3.0), 2u);
+  EXPECT_GT(checks, 0);
+}
+
 TEST(ExactRRTConnect, AProbeStateThatIsFreeChangesNothing) {
   // Nothing collides: the trees grow exactly as without the probe (it draws
   // no random numbers), with the same motion checks.
@@ -344,6 +371,13 @@ TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
   }
   EXPECT_THROW(planner.setMinProgress(HUGE_VAL), InvalidInputError);
   EXPECT_THROW(planner.setProbeSteps(HUGE_VAL), InvalidInputError);
+  try {
+    planner.setProbeSteps(-1.0);
+    ADD_FAILURE() << "-1 accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "ExactRRTConnect: probe_steps must be a finite number of steps >= 0 (0: no probe), got -1");
+  }
   try {
     planner.setMinProgress(-0.5);
     ADD_FAILURE() << "-0.5 accepted";

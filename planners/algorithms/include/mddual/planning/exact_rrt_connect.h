@@ -34,9 +34,10 @@
 // extension gaining less than that adds nothing; with MDD-DUAL's validator a
 // rotating edge blocked within its first step returns lastValid 0, so a
 // value below 1 keeps no more of those edges than 1 does), "probe_steps"
-// (in the same steps; 4 by default, 0: no probe: before an edge's motion
-// check, the state that many steps into it is tested, and when it collides
-// the extension ends there, adding nothing), "rotate_first"
+// (in the same steps; 4 by default, 0: no probe: before the motion check of
+// an edge longer than that many steps, the state that many steps into it is
+// tested, and when it collides the edge adds nothing and the extension ends;
+// a rotation in place already kept stays), "rotate_first"
 // (1: the two-edge extension where the space allows it; 0, the default:
 // straight edges everywhere). Rotating first was the default for a while; it made the
 // planner about 10x slower on the SE(2) maze and the SE(3) cubicles (README,
@@ -69,9 +70,14 @@
 // In a recorded bugtrap run (README, "What mdd_rrtconnect's lastValid
 // searches on bugtrap are spent on") 804 of the 1,240 searched blocked
 // rotating edges, though free one step in, returned less than a step (and
-// were dropped by min_progress) after 42% of the searches' work. One state
-// test ends most of them first; it also drops the edges blocked between the
-// first and the fourth step that the search would have kept. Measured on the
+// were dropped by min_progress) after 42% of the triples of all the run's
+// rotating searches (valid edges' included). One state test is meant to end
+// many of those first (not those free again four steps in); it also drops
+// the edges blocked between the first and the fourth step that the search
+// would have kept. The probe is the planner's, so it runs with every motion
+// validator; with OMPL's discrete validator, which samples from the start,
+// it saves at most a few state tests of a blocked edge and repeats one of
+// every other. Measured with the MDD checkers on the
 // five mesh configs (README, "A probe before each extension's motion
 // check"; 20 runs, seeds 1 to 3): 4 steps gave lower medians than no probe
 // in 13 of 15 (config, seed) groups (bugtrap 0.35 -> 0.215 s with seed 1,

@@ -277,18 +277,25 @@ TEST(ExactRRTConnect, BlockedExtensionsShorterThanMinProgressStepsAddNothing) {
   EXPECT_EQ(states, 2u + static_cast<unsigned>(checks));
 }
 
+/// makeSetup's problem with another state validity checker.
+og::SimpleSetup makeSetupWith(const ob::StateValidityCheckerFn& valid) {
+  og::SimpleSetup ss = makeSetup();
+  ss.setStateValidityChecker(valid);
+  return ss;
+}
+
+/// The state's distance from the nearer of makeSetup's start and goal.
+double toStartOrGoal(const ob::State* s) {
+  const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
+  const double y = v->values[1] - 1.0;
+  return std::min(std::hypot(v->values[0] - 1.0, y), std::hypot(v->values[0] - 9.0, y));
+}
+
 TEST(ExactRRTConnect, AProbeStateThatCollidesEndsTheExtensionWithoutAMotionCheck) {
   // Every state but the start and the goal collides: each extension's probe
   // (four steps in) says so, and no motion check is made. Without the probe
   // (0) the validator is asked.
-  const auto walled = [] {
-    og::SimpleSetup ss = makeSetup();
-    ss.setStateValidityChecker([](const ob::State* s) {
-      const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-      return v->values[1] == 1.0 && (v->values[0] == 1.0 || v->values[0] == 9.0);
-    });
-    return ss;
-  };
+  const auto walled = [] { return makeSetupWith([](const ob::State* s) { return toStartOrGoal(s) == 0.0; }); };
   int checks = -1;
   EXPECT_EQ(statesWithShortGains(walled(), 5.0, 1.0, &checks), 2u);
   EXPECT_EQ(checks, 0);
@@ -306,15 +313,7 @@ TEST(ExactRRTConnect, TheProbeIsProbeStepsIntoTheEdge) {
   // probe outside the disks).
   const double step = 0.001 * std::sqrt(200.0);
   const auto disks = [step] {
-    og::SimpleSetup ss = makeSetup();
-    ss.setStateValidityChecker([step](const ob::State* s) {
-      const auto* v = s->as<ob::RealVectorStateSpace::StateType>();
-      const double y = v->values[1] - 1.0;
-      const double to_start = std::hypot(v->values[0] - 1.0, y);
-      const double to_goal = std::hypot(v->values[0] - 9.0, y);
-      return std::min(to_start, to_goal) < 3.5 * step;
-    });
-    return ss;
+    return makeSetupWith([step](const ob::State* s) { return toStartOrGoal(s) < 3.5 * step; });
   };
   int checks = -1;
   EXPECT_EQ(statesWithShortGains(disks(), 5.0, 1.0, &checks), 2u);
@@ -326,11 +325,7 @@ TEST(ExactRRTConnect, TheProbeIsProbeStepsIntoTheEdge) {
 TEST(ExactRRTConnect, AProbeStateThatIsFreeChangesNothing) {
   // Nothing collides: the trees grow exactly as without the probe (it draws
   // no random numbers), with the same motion checks.
-  const auto open = [] {
-    og::SimpleSetup ss = makeSetup();
-    ss.setStateValidityChecker([](const ob::State*) { return true; });
-    return ss;
-  };
+  const auto open = [] { return makeSetupWith([](const ob::State*) { return true; }); };
   int with_probe = 0, without = 0;
   const unsigned states = statesWithShortGains(open(), 5.0, 1.0, &with_probe);
   EXPECT_GT(with_probe, 10);

@@ -382,14 +382,24 @@ bool triangleObbApart(const std::array<Eigen::Vector3d, 3>& tri, const Obb& box,
   const Eigen::Vector3d f0 = p1 - p0, f1 = p2 - p1, f2 = p0 - p2;
   if (apart(f0.cross(f1))) return true;  // the triangle's normal (zero for a segment: never apart)
   // 4. Box axis e_k x edge f: e_x x f = (0, -f_z, f_y), e_y x f = (f_z, 0,
-  //    -f_x), e_z x f = (-f_y, f_x, 0).
-  for (const Eigen::Vector3d* f : {&f0, &f1, &f2}) {
-    if (apart(Eigen::Vector3d(0.0, -f->z(), f->y())) || apart(Eigen::Vector3d(f->z(), 0.0, -f->x())) ||
-        apart(Eigen::Vector3d(-f->y(), f->x(), 0.0))) {
-      return true;
-    }
-  }
-  return false;
+  //    -f_x), e_z x f = (-f_y, f_x, 0). Such an axis is perpendicular to f,
+  //    so the edge's two ends project to one point: the triangle's interval
+  //    is spanned by one end and the third vertex (Akenine-Moller's
+  //    triangle-box test). The ends differ by the round-off of f, about
+  //    1e-16 of |a| |p|, far below the slack (kBvhSlackRel of the scale).
+  //    Callgrind, the state checks of the five mesh configs: 3% to 8% fewer
+  //    instructions (README, "A world triangle against the robot node's box").
+  const auto apartPair = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& q, const Eigen::Vector3d& w) {
+    const double r = h.dot(a.cwiseAbs()) + slack * a.cwiseAbs().sum();
+    const double dq = a.dot(q), dw = a.dot(w);
+    return std::min(dq, dw) > r || std::max(dq, dw) < -r;
+  };
+  const auto apartAlong = [&](const Eigen::Vector3d& f, const Eigen::Vector3d& q, const Eigen::Vector3d& w) {
+    return apartPair(Eigen::Vector3d(0.0, -f.z(), f.y()), q, w) ||
+           apartPair(Eigen::Vector3d(f.z(), 0.0, -f.x()), q, w) || apartPair(Eigen::Vector3d(-f.y(), f.x(), 0.0), q, w);
+  };
+  // f0 joins p0 and p1, f1 p1 and p2, f2 p2 and p0.
+  return apartAlong(f0, p0, p2) || apartAlong(f1, p1, p0) || apartAlong(f2, p2, p1);
 }
 
 bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, const Eigen::Vector3d& v, double slack) {

@@ -13,6 +13,13 @@ namespace mddual::testing {
 inline double uniform(generators::Rng& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
 }
+/// A vector of coordinates uniform in [lo, hi], drawn x, y, z in that order
+/// (generators::drawVector draws z first).
+inline Eigen::Vector3d uniformVector(generators::Rng& rng, double lo, double hi) {
+  Eigen::Vector3d v;
+  for (int k = 0; k < 3; ++k) v[k] = uniform(rng, lo, hi);
+  return v;
+}
 inline int uniformInt(generators::Rng& rng, int lo, int hi) {
   return std::uniform_int_distribution<int>(lo, hi)(rng);
 }

@@ -25,14 +25,24 @@ constexpr double kSlerpRoundoffRel = 1e-8;
 /// node is split. Measured on the trap and mesh scenes (rotating edges up to
 /// pi, benchmarks/planning): splitting the largest of e and the radii (both
 /// 1) needs 3x the triples and core queries of (0.1, 0.01); splitting time
-/// whenever e > 0.05 r, 1.5x.
+/// whenever e > 0.05 r, 1.5x. Re-measured at 598fa87 (mddual_bench_planning
+/// --mdd-only --cpu --states 10 --edges 300 --passes 2, rotating edges, two
+/// rounds, the current values against each change): 0.05 here gave the
+/// maze's lastValid checks 3% to 9% less time and twistycool's at the range
+/// 3% to 4% less, but the cubicles' checkMotion up to the range 34% more and
+/// bugtrap's 17% to 19% more; 0.2 the cubicles' checkMotion 15% less but
+/// lastValid 10% to 22% more on bugtrap, twistycool and the maze;
+/// kTimeSplitNever 0.005 or 0.02 faster nowhere (up to 9% slower).
 constexpr double kTimeSplitAlways = 0.1;
 constexpr double kTimeSplitNever = 0.01;
 /// When neither node's radius exceeds the other's by more than this factor,
 /// both are split at once (four child triples). Measured on bugtrap
 /// (benchmarks/planning, rotating edges): 15% to 25% less time than
 /// splitting the larger node only, 1.5 about the same; splitting both
-/// whenever both have children made the apartment 20x slower.
+/// whenever both have children made the apartment 20x slower. Re-measured at
+/// 598fa87 (as kTimeSplitAlways): 4 made the maze's checks up to 31% slower
+/// and bugtrap's lastValid 7% to 19%; 1.3 was faster nowhere (bugtrap's and
+/// twistycool's checkMotion up to the range 4% to 8% slower).
 constexpr double kBothSplitRatio = 2.0;
 
 /// A time interval [ta, tb] of the edge and the pose the triples on it use.

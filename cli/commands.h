@@ -5,10 +5,10 @@
 //   0  success;
 //   1  the command ran to the end but some input lines failed or some answers
 //      disagreed (the callback throws CLI::RuntimeError(1));
-//   2  the command could not run: unreadable or unwritable file, unexpected
-//      exception (the callback throws FatalError, main prints "mddual: <what>").
-// CLI11 reports usage errors (unknown option, bad --method) with its own
-// message and exit code.
+//   2  the command could not run: a usage error (unknown option or
+//      subcommand, missing or bad value: CLI11's message), bad input,
+//      unreadable or unwritable file, unexpected exception (the callback
+//      throws FatalError, main prints "mddual: <what>").
 #pragma once
 
 #include <stdexcept>

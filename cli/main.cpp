@@ -21,8 +21,8 @@ std::string subcommandNames(const CLI::App& app) {
 
 /// CLI11 answers a first argument that names no subcommand with "A
 /// subcommand is required" (or "arguments were not expected"): name it and
-/// list the subcommands instead. Returns the exit status, or -1 when the first
-/// argument is a subcommand or an option.
+/// list the subcommands instead. Returns the exit status (2, a usage error),
+/// or -1 when the first argument is a subcommand or an option.
 int unknownSubcommand(CLI::App& app, int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return -1;
   const std::string name = argv[1];
@@ -34,7 +34,7 @@ int unknownSubcommand(CLI::App& app, int argc, char** argv) {
   if (shown.size() > kMaxShown) shown = shown.substr(0, kMaxShown) + "... (" + std::to_string(name.size()) + " bytes)";
   std::cerr << "mddual: unknown subcommand '" << shown << "' (subcommands: " << subcommandNames(app)
             << "; mddual --help describes them)\n";
-  return static_cast<int>(CLI::ExitCodes::ExtrasError);
+  return 2;
 }
 
 }  // namespace
@@ -55,10 +55,13 @@ int main(int argc, char** argv) {
   if (unknown >= 0) return unknown;
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return e.get_exit_code();  // a subcommand's exit status (1), silently
   } catch (const CLI::ParseError& e) {
-    // Usage errors print CLI11's message; CLI::RuntimeError carries a
-    // subcommand's exit status silently.
-    return app.exit(e);
+    // Usage errors (unknown option, missing value, bad --method) print
+    // CLI11's message and exit with 2, the status of every other bad input;
+    // --help prints the help and exits with 0.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const mddual::cli::FatalError& e) {
     std::cout.flush();
     std::cerr << "mddual: " << e.what() << '\n';

@@ -109,21 +109,39 @@ TEST(CliErrors, EmptyInputExitsZero) {
 
 TEST(CliErrors, UnknownOptionFails) {
   const CliRun run = runCli({"query", "--frobnicate"});
-  EXPECT_GT(run.exit_code, 0) << "signal " << run.signal;
+  EXPECT_EQ(run.exit_code, 2) << "signal " << run.signal;  // a usage error is bad input
   EXPECT_NE(run.err.find("--frobnicate"), std::string::npos) << run.err;
   EXPECT_EQ(run.out, "");
 }
 
 TEST(CliErrors, BadMethodFails) {
   const CliRun run = runCli({"query", "--method", "foo"}, queryLine(1, cube(0.0), cube(-3.0), {1, 0, 0}));
-  EXPECT_GT(run.exit_code, 0) << "signal " << run.signal;
+  EXPECT_EQ(run.exit_code, 2) << "signal " << run.signal;
   EXPECT_NE(run.err.find("foo"), std::string::npos) << run.err;
   EXPECT_EQ(run.out, "");
 }
 
 TEST(CliErrors, MissingSubcommandFails) {
   const CliRun run = runCli({});
-  EXPECT_GT(run.exit_code, 0) << "signal " << run.signal;
+  EXPECT_EQ(run.exit_code, 2) << "signal " << run.signal;
+}
+
+// Every usage error exits with 2, the status of bad input (CLI11's own codes,
+// 105 to 115, before): an unknown subcommand, an extra argument, an option
+// given twice or without its value, a value out of its range.
+TEST(CliErrors, UsageErrorsExitTwo) {
+  const std::vector<std::vector<std::string>> cases = {
+      {"frobnicate"},           {"query", "extra-positional"},
+      {"query", "--method"},    {"query", "--method", "mdd", "--method", "mdd"},
+      {"demo", "--pairs", "0"},
+  };
+  for (const std::vector<std::string>& args : cases) {
+    const CliRun run = runCli(args);
+    std::string shown;
+    for (const std::string& a : args) shown += " " + a;
+    EXPECT_EQ(run.exit_code, 2) << "mddual" << shown << ": signal " << run.signal << ", " << run.err;
+    EXPECT_FALSE(run.err.empty()) << "mddual" << shown;
+  }
 }
 
 TEST(CliErrors, MissingInputFileExitsTwo) {

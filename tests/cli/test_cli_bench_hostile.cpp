@@ -1,11 +1,13 @@
 // `mddual bench` and `mddual bench-report` on hostile input (issue 11): a
-// start or goal state in collision or out of bounds, a 10 MB problem name,
+// start or goal state in collision or out of bounds, planner parameters that
+// OMPL checks at set-up, a 10 MB problem name,
 // a log cut off inside its CPU-info block (ompl_benchmark_statistics loops
 // forever on it), a copied log, a report step that does not finish, and the
 // shard seeding described by --help.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -53,6 +55,42 @@ TEST(CliBenchHostile, InvalidStartOrGoalIsNamedBeforePlanning) {
     EXPECT_EQ(run.err, c.message);
     EXPECT_EQ(run.out, "");
     EXPECT_FALSE(fs::exists(out)) << "nothing ran";
+  }
+}
+
+// Parameters that OMPL checks only when the planner is set up, or that set
+// the MDD validator's discarded fraction: the message names the cfg's line and
+// the planner (it named neither before).
+TEST(CliBenchHostile, PlannerParametersCheckedAtSetUpAreNamed) {
+  const TempDir dir;
+  const fs::path base(dir.path());
+  struct Case {
+    std::string line;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"kpiece.min_valid_path_fraction = 0",
+       "planner 'kpiece': The minimum valid path fraction must be in the range (0,1] (OMPL's check at the planner's "
+       "set-up)\n"},
+      {"kpiece.failed_expansion_score_factor = 0",
+       "planner 'kpiece': Failed expansion cell score factor must be in the range (0,1] (OMPL's check at the "
+       "planner's set-up)\n"},
+      {"kpiece.min_valid_path_fraction = -1",
+       "planner 'kpiece': min_valid_path_fraction: MddMotionValidator: the discarded lastValid fraction must be in "
+       "[0, 1], got -1.000000\n"},
+  };
+  int k = 0;
+  for (const Case& c : cases) {
+    const fs::path cfg =
+        tinyConfigWith(base / std::to_string(k++), "rrtconnect =\nmdd_rrtconnect =\n", "kpiece =\n" + c.line + "\n");
+    const std::string text = readFile(cfg.string());
+    const std::size_t line =
+        1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + text.find("kpiece ="), '\n'));
+    const CliRun run = runCli({"bench", cfg.string(), "--checkers", "mdd", "--runs", "1", "--time-limit", "0.2",
+                               "--output", (cfg.parent_path() / "out").string()});
+    EXPECT_EQ(run.exit_code, 2) << c.line << ": " << run.err;
+    const std::string expected = "mddual: tiny.cfg:" + std::to_string(line) + ": " + c.message;
+    EXPECT_NE(run.err.find(expected), std::string::npos) << c.line << ": expected " << expected << "\ngot " << run.err;
   }
 }
 

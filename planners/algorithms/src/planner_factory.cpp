@@ -42,10 +42,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <map>
+#include <type_traits>
 
 #include "mddual/error.h"
 #include "mddual/planning/exact_rrt_connect.h"
@@ -143,28 +147,114 @@ std::string knownList() {
   return known;
 }
 
-/// A real parameter's value must be a finite number (OMPL would store NaN,
-/// or fail with a message that names neither); one outside the range OMPL
-/// declares for it gets a warning (a range suggestion, not always a limit:
-/// a planner's range may exceed 10000 in a large world, a goal bias of 5
-/// makes no sense).
-void checkRealParameter(const ob::GenericParam& param, const std::string& value, const std::string& where) {
-  if (dynamic_cast<const ob::SpecificParam<double>*>(&param) == nullptr) return;
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v)) {
-    throw InvalidInputError(where + ": not a finite number");
-  }
-  // OMPL's suggestion "low:step:high" or "low:high".
+/// OMPL's range suggestion "low:step:high" or "low:high" as (low, high)
+/// texts; false when it has no such form (a boolean's "0,1", a string's "").
+bool rangeSuggestion(const ob::GenericParam& param, std::string* low, std::string* high) {
   const std::string& range = param.getRangeSuggestion();
   const std::size_t first = range.find(':');
-  const std::size_t last = range.rfind(':');
-  if (first == std::string::npos) return;
-  const double low = std::strtod(range.substr(0, first).c_str(), nullptr);
-  const double high = std::strtod(range.substr(last + 1).c_str(), nullptr);
-  if (v < low || v > high) {
-    OMPL_WARN("%s: outside the range OMPL declares for it, [%s, %s]", where.c_str(), range.substr(0, first).c_str(),
-              range.substr(last + 1).c_str());
+  if (first == std::string::npos) return false;
+  *low = range.substr(0, first);
+  *high = range.substr(range.rfind(':') + 1);
+  return true;
+}
+
+/// A value outside the range OMPL declares gets a warning (a range
+/// suggestion, not always a limit: a planner's range may exceed 10000 in a
+/// large world, a goal bias of 5 makes no sense).
+void warnOutsideRange(const ob::GenericParam& param, double v, const std::string& where) {
+  std::string low, high;
+  if (!rangeSuggestion(param, &low, &high)) return;
+  if (v < std::strtod(low.c_str(), nullptr) || v > std::strtod(high.c_str(), nullptr)) {
+    OMPL_WARN("%s: outside the range OMPL declares for it, [%s, %s]", where.c_str(), low.c_str(), high.c_str());
+  }
+}
+
+/// Integer parameters below which OMPL 1.5.2 crashes or aborts, by planner
+/// (canonical name) and parameter: APS with no planners (segmentation fault),
+/// STRIDE's GNAT of degree 0 (an Eigen assertion; also a minimum degree of 0
+/// in a benchmark run), pSBL's and pRRT's thread counts of 0 and AIT*'s
+/// batches of no samples (OMPL's assertions). Found by a hostile-input hunt
+/// (`mddual bench` on thin_walls), each confirmed alone on a small SE(3)
+/// problem; CForest with no threads, BIT*'s and FMT*'s zero samples and
+/// STRIDE's other degrees ran there. Smaller values are refused.
+std::uint64_t hardMinimum(const std::string& planner, const std::string& key) {
+  static const std::map<std::pair<std::string, std::string>, std::uint64_t> minimums{
+      {{"aps", "num_planners"}, 1},  {{"stride", "degree"}, 1},     {{"stride", "min_degree"}, 1},
+      {{"psbl", "thread_count"}, 1}, {{"prrt", "thread_count"}, 1}, {{"aitstar", "samples_per_batch"}, 1},
+  };
+  const auto it = minimums.find({planner, key});
+  return it == minimums.end() ? 0 : it->second;
+}
+
+/// An integer parameter's value: digits, after a '-' for a signed type, within
+/// the type's range (OMPL's conversion turned -1 into 4294967295, 2.5 into 2
+/// and 1e300 into 1) and not below hardMinimum.
+template <class T>
+void checkInteger(const ob::GenericParam& param, const std::string& value, const std::string& planner,
+                  const std::string& key, const std::string& where) {
+  const bool negative = !value.empty() && value[0] == '-';
+  const std::string digits = negative ? value.substr(1) : value;
+  const bool all_digits = !digits.empty() && std::all_of(digits.begin(), digits.end(),
+                                                         [](unsigned char c) { return std::isdigit(c) != 0; });
+  if (!all_digits) throw InvalidInputError(where + ": not an integer");
+  if (negative && !std::is_signed<T>::value) throw InvalidInputError(where + ": must be 0 or more");
+  errno = 0;
+  const long double v = std::strtold(value.c_str(), nullptr);
+  if (errno == ERANGE || v < static_cast<long double>(std::numeric_limits<T>::min()) ||
+      v > static_cast<long double>(std::numeric_limits<T>::max())) {
+    throw InvalidInputError(where + ": out of range (" + std::to_string(std::numeric_limits<T>::min()) + " to " +
+                            std::to_string(std::numeric_limits<T>::max()) + ")");
+  }
+  const std::uint64_t minimum = hardMinimum(planner, key);
+  if (!negative && v < static_cast<long double>(minimum)) {
+    throw InvalidInputError(where + ": must be at least " + std::to_string(minimum) +
+                            " (OMPL's planner fails below it)");
+  }
+  warnOutsideRange(param, static_cast<double>(v), where);
+}
+
+/// Checks `value` for the parameter's type and returns it as OMPL's setParam
+/// wants it: a real must be a finite number (OMPL would store NaN, or fail
+/// with a message that names neither), an integer as checkInteger says, a
+/// boolean one of true/false, 1/0, yes/no, on/off in any case (OMPL's
+/// conversion read "no", "off" and "abc" as true), passed on as "1" or "0".
+/// Other types (APS's list of planners) pass unchanged.
+std::string checkedValue(const ob::GenericParam& param, const std::string& value, const std::string& planner,
+                         const std::string& key, const std::string& where) {
+  if (dynamic_cast<const ob::SpecificParam<double>*>(&param) != nullptr) {
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(v)) {
+      throw InvalidInputError(where + ": not a finite number");
+    }
+    warnOutsideRange(param, v, where);
+  } else if (dynamic_cast<const ob::SpecificParam<bool>*>(&param) != nullptr) {
+    const std::string v = lower(value);
+    if (v == "1" || v == "true" || v == "yes" || v == "on") return "1";
+    if (v == "0" || v == "false" || v == "no" || v == "off") return "0";
+    throw InvalidInputError(where + ": not a boolean (true/false, 1/0, yes/no, on/off)");
+  } else if (dynamic_cast<const ob::SpecificParam<int>*>(&param) != nullptr) {
+    checkInteger<int>(param, value, planner, key, where);
+  } else if (dynamic_cast<const ob::SpecificParam<unsigned int>*>(&param) != nullptr) {
+    checkInteger<unsigned int>(param, value, planner, key, where);
+  } else if (dynamic_cast<const ob::SpecificParam<unsigned long>*>(&param) != nullptr) {
+    checkInteger<unsigned long>(param, value, planner, key, where);
+  } else if (dynamic_cast<const ob::SpecificParam<long>*>(&param) != nullptr) {
+    checkInteger<long>(param, value, planner, key, where);
+  }
+  return value;
+}
+
+/// A planner's display name: the name in the benchmark's log and table.
+void checkPlannerName(const std::string& planner, const std::string& value) {
+  const std::string where = "planner '" + planner + "': name '" + value + "'";
+  if (value.empty()) throw InvalidInputError("planner '" + planner + "': name is empty");
+  if (std::any_of(value.begin(), value.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f || c == '|'; })) {
+    throw InvalidInputError(where + ": control characters and '|' are not allowed (the results table)");
+  }
+  const std::string other = canonicalPlannerName(value);
+  if (!other.empty() && other != canonicalPlannerName(planner)) {
+    throw InvalidInputError(where + " is the name of another planner, '" + other + "'");
   }
 }
 
@@ -190,15 +280,16 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
   ob::PlannerPtr planner = it->second(si);
   for (const auto& [key, value] : params) {
     if (key == "name") {
+      checkPlannerName(name, value);
       planner->setName(value);
     } else if (!planner->params().hasParam(key)) {
       throw InvalidInputError("planner '" + name + "' has no parameter '" + key + "'");
     } else {
       const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + value + "'";
-      checkRealParameter(*planner->params().getParams().at(key), value, where);
+      const std::string checked = checkedValue(*planner->params().getParams().at(key), value, it->first, key, where);
       bool ok = false;
       try {
-        ok = planner->params().setParam(key, value);
+        ok = planner->params().setParam(key, checked);
       } catch (const std::exception& e) {
         throw InvalidInputError(where + ": " + e.what());
       }

@@ -1,6 +1,8 @@
 #include "mddual/planning/bench_runner.h"
 
 #include <ompl/tools/benchmark/Benchmark.h>
+#include <ompl/util/Exception.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -48,10 +50,13 @@ int parseInt(const std::string& text, const std::string& what) {
 /// log's settings), specs, progress properties, planner data.
 class MeteredPlanner : public ob::Planner {
  public:
-  MeteredPlanner(ob::PlannerPtr inner, std::function<void()> solved)
+  /// `where`: the planner's place in the cfg (ProblemSetup::plannerWhere), for
+  /// the errors of OMPL's checks of its parameters at set-up.
+  MeteredPlanner(ob::PlannerPtr inner, std::function<void()> solved, std::string where)
       : ob::Planner(inner->getSpaceInformation(), inner->getName()),
         inner_(std::move(inner)),
-        solved_(std::move(solved)) {
+        solved_(std::move(solved)),
+        where_(std::move(where)) {
     specs_ = inner_->getSpecs();
     params_.include(inner_->params());
     plannerProgressProperties_ = inner_->getPlannerProgressProperties();
@@ -74,7 +79,13 @@ class MeteredPlanner : public ob::Planner {
   void clear() override { inner_->clear(); }
   void clearQuery() override { inner_->clearQuery(); }
   void setup() override {
-    inner_->setup();
+    // Some parameters are checked only here (KPIECE1's min_valid_path_fraction
+    // and failed_expansion_score_factor): OMPL's message, with the place.
+    try {
+      inner_->setup();
+    } catch (const ompl::Exception& e) {
+      throw InvalidInputError(where_ + e.what() + " (OMPL's check at the planner's set-up)");
+    }
     setup_ = true;
   }
   void checkValidity() override { inner_->checkValidity(); }
@@ -86,6 +97,7 @@ class MeteredPlanner : public ob::Planner {
  private:
   ob::PlannerPtr inner_;
   std::function<void()> solved_;
+  std::string where_;
 };
 
 /// Writes a path as OMPL's printAsMatrix does (one state per line).
@@ -286,9 +298,15 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
       const int count = ++seen[p->getName()];
       if (count > 1) p->setName(p->getName() + "_" + std::to_string(count));
       setup.applyPlannerContext(specs[i]);
+      const std::string where = setup.plannerWhere(specs[i]);
       discarded_fraction.push_back(discardedLastValidFraction(*p));
-      setup.setDiscardedLastValidFraction(discarded_fraction.back());  // tried once now, as the context
-      p = std::make_shared<MeteredPlanner>(p, [&setup, &solve_stats] { solve_stats = setup.stats(); });
+      try {
+        setup.setDiscardedLastValidFraction(discarded_fraction.back());  // tried once now, as the context
+      } catch (const InvalidInputError& e) {
+        throw InvalidInputError(where + "min_valid_path_fraction: " + e.what());
+      }
+      p = std::make_shared<MeteredPlanner>(
+          p, [&setup, &solve_stats] { solve_stats = setup.stats(); }, where);
       spec_of[p.get()] = i;
       planners.push_back(p);
     }

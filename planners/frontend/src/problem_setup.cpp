@@ -521,6 +521,10 @@ ob::PlannerPtr ProblemSetup::makePlanner(const scene::PlannerSpec& spec) const {
   return planner;
 }
 
+std::string ProblemSetup::plannerWhere(const scene::PlannerSpec& spec) const {
+  return specWhere(problem_.cfgName(), spec) + "planner '" + spec.name + "': ";
+}
+
 void ProblemSetup::setDiscardedLastValidFraction(double fraction) {
   if (mdd_motion_) mdd_motion_->setDiscardedLastValidFraction(fraction);
 }

@@ -277,5 +277,83 @@ TEST(PlannerFactory, ErrorsNameTheProblem) {
             "planner 'rrt': parameter 'goal_bias' = '5': outside the range OMPL declares for it, [0., 1.]\n");
 }
 
+/// The message of makePlanner(planner, se3(), {{key, value}}), or "" when it is accepted.
+std::string refusal(const std::string& planner, const std::string& key, const std::string& value) {
+  try {
+    makePlanner(planner, se3(), {{key, value}});
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A hostile-input hunt's cases: OMPL's conversion stored -1 as 4294967295 in
+// an unsigned parameter (FMT* then sampled without end), 2.5 as 2 and 1e300
+// as 1; a boolean took "no", "off" and "abc" as true. Each is refused with the
+// planner, the parameter and the value named.
+TEST(PlannerFactory, IntegerAndBooleanParametersAreCheckedForTheirType) {
+  const std::string at = "planner 'fmt': parameter 'num_samples' = '";
+  EXPECT_EQ(refusal("fmt", "num_samples", "-1"), at + "-1': must be 0 or more");
+  EXPECT_EQ(refusal("fmt", "num_samples", "2.5"), at + "2.5': not an integer");
+  EXPECT_EQ(refusal("fmt", "num_samples", "1e300"), at + "1e300': not an integer");
+  EXPECT_EQ(refusal("fmt", "num_samples", ""), at + "': not an integer");
+  EXPECT_EQ(refusal("fmt", "num_samples", "4294967296"), at + "4294967296': out of range (0 to 4294967295)");
+  EXPECT_EQ(refusal("fmt", "num_samples", "5000"), "");
+  // A signed integer (RRTXstatic's rejection_variant) takes a sign; a size_t (AIT*'s batch) none.
+  EXPECT_EQ(refusal("rrtxstatic", "rejection_variant", "2"), "");
+  EXPECT_EQ(refusal("rrtxstatic", "rejection_variant", "-1"),  // parsed, then OMPL's own check
+            "planner 'rrtxstatic': parameter 'rejection_variant' = '-1': Variant must be 0 (original RRT#) or in "
+            "[1, 3]");
+  EXPECT_EQ(refusal("rrtxstatic", "rejection_variant", "2147483648"),
+            "planner 'rrtxstatic': parameter 'rejection_variant' = '2147483648': out of range (-2147483648 to "
+            "2147483647)");
+  EXPECT_EQ(refusal("aitstar", "samples_per_batch", "-5"),
+            "planner 'aitstar': parameter 'samples_per_batch' = '-5': must be 0 or more");
+  for (const char* yes : {"1", "true", "Yes", "ON"}) {
+    const ob::PlannerPtr p = makePlanner("mdd_rrtconnect", se3(), {{"rotate_first", yes}});
+    EXPECT_EQ(p->params().getParam("rotate_first")->getValue(), "1") << yes;
+  }
+  for (const char* no : {"0", "false", "no", "Off"}) {
+    const ob::PlannerPtr p = makePlanner("mdd_rrtconnect", se3(), {{"rotate_first", no}});
+    EXPECT_EQ(p->params().getParam("rotate_first")->getValue(), "0") << no;
+  }
+  for (const char* bad : {"abc", "", "-1", "00", "0.0"}) {
+    EXPECT_EQ(refusal("mdd_rrtconnect", "rotate_first", bad),
+              std::string("planner 'mdd_rrtconnect': parameter 'rotate_first' = '") + bad +
+                  "': not a boolean (true/false, 1/0, yes/no, on/off)");
+  }
+}
+
+// Values at which OMPL 1.5.2's planner crashes or aborts (hardMinimum in
+// planner_factory.cpp): refused; the smallest value that runs is accepted.
+TEST(PlannerFactory, ValuesThatCrashOmplAreRefused) {
+  const std::vector<std::pair<std::string, std::string>> crashing = {
+      {"aps", "num_planners"},  {"stride", "degree"},     {"stride", "min_degree"},
+      {"psbl", "thread_count"}, {"prrt", "thread_count"}, {"aitstar", "samples_per_batch"},
+  };
+  for (const auto& [planner, key] : crashing) {
+    EXPECT_EQ(refusal(planner, key, "0"), "planner '" + planner + "': parameter '" + key +
+                                              "' = '0': must be at least 1 (OMPL's planner fails below it)");
+    EXPECT_EQ(refusal(planner, key, "1"), "") << planner << "." << key;
+  }
+  EXPECT_EQ(refusal("cforest", "num_threads", "0"), "");  // runs (checked alone in OMPL 1.5.2)
+}
+
+TEST(PlannerFactory, NamesAreCheckedForTheResultsTable) {
+  EXPECT_EQ(refusal("mdd_rrtconnect", "name", ""), "planner 'mdd_rrtconnect': name is empty");
+  const std::string table = "': control characters and '|' are not allowed (the results table)";
+  EXPECT_EQ(refusal("mdd_rrtconnect", "name", "x|y"), "planner 'mdd_rrtconnect': name 'x|y" + table);
+  EXPECT_EQ(refusal("rrt", "name", "two\nlines"), "planner 'rrt': name 'two\nlines" + table);
+  // Another planner's name (it read as a second instance of that planner);
+  // the planner's own name in any spelling is fine.
+  EXPECT_EQ(refusal("mdd_rrtconnect", "name", "rrtconnect"),
+            "planner 'mdd_rrtconnect': name 'rrtconnect' is the name of another planner, 'rrtconnect'");
+  EXPECT_EQ(refusal("mdd_rrtconnect", "name", "RRTConnect"),
+            "planner 'mdd_rrtconnect': name 'RRTConnect' is the name of another planner, 'rrtconnect'");
+  EXPECT_EQ(refusal("rrt", "name", "RRT"), "");
+  EXPECT_EQ(refusal("kpiece", "name", "KPIECE1"), "");
+  EXPECT_EQ(refusal("rrt", "name", "rrt with range 2"), "");
+}
+
 }  // namespace
 }  // namespace mddual::planning

@@ -178,6 +178,8 @@ class ProblemSetup {
   /// spec.params), named spec.name unless its params set "name". Throws
   /// InvalidInputError "<cfg>:<line>: ..." for a parameter it rejects.
   ompl::base::PlannerPtr makePlanner(const scene::PlannerSpec& spec) const;
+  /// Where a [planner] entry is, for messages: "<cfg>:<line>: planner 'NAME': ".
+  std::string plannerWhere(const scene::PlannerSpec& spec) const;
 
   /// Sets the space parameters and then spec.context on the space information
   /// (see the file comment) and sets the state space up again. Throws

@@ -35,6 +35,13 @@ namespace {
 /// Relative slack of the min_progress comparison (in steps): a fraction j /
 /// steps times steps is j within a few ulps.
 constexpr double kStepRoundoff = 1e-9;
+/// A blocked edge gaining less than this many steps adds nothing, whatever
+/// min_progress says. With min_progress = 0, edges gaining round-off (their
+/// lastValid fraction a few ulps above 0) were kept: near-copies of their
+/// start state, on which OMPL's nearest-neighbour structure (GNAT) spent 97%
+/// of the run (a hostile-input hunt: thin_walls, 0 of 2 runs solved in 3 s;
+/// 2 of 2 in 1 s with min_progress = 1e-14, none with 1e-300).
+constexpr double kMinGainSteps = 1e-9;
 
 /// The value in ostream's default format (6 significant digits, "nan", "inf").
 std::string text(double value) {
@@ -167,7 +174,8 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
     // the fraction: OMPL's discrete validator keeps whole steps (j / steps),
     // and a gain of exactly min_progress steps must not be lost to the
     // round-off of a distance comparison (kStepRoundoff).
-    if (last_valid.second * steps >= min_progress_ * (1.0 - kStepRoundoff)) added = addMotion(tree, from, last);
+    const double gain = last_valid.second * steps;
+    if (gain >= min_progress_ * (1.0 - kStepRoundoff) && gain >= kMinGainSteps) added = addMotion(tree, from, last);
   }
   si_->freeState(last);
   return added;

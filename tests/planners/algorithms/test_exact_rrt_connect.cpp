@@ -270,6 +270,11 @@ TEST(ExactRRTConnect, BlockedExtensionsShorterThanMinProgressStepsAddNothing) {
   EXPECT_GT(checks, 10);                                                // extensions were tried
   EXPECT_GT(statesWithShortGains(makeSetup(), 0.4, 0.25, &checks), 10u);
   EXPECT_GT(statesWithShortGains(makeSetup(), 0.4, 0.0, &checks), 10u);  // any gain, as before
+  // ... but a gain of round-off adds nothing even then (kMinGainSteps, 1e-9
+  // steps: near-copies of a state stalled OMPL's nearest-neighbour search).
+  EXPECT_EQ(statesWithShortGains(makeSetup(), 1e-12, 0.0, &checks), 2u);
+  EXPECT_GT(checks, 10);
+  EXPECT_GT(statesWithShortGains(makeSetup(), 1e-8, 0.0, &checks), 10u);
   // Exactly one step (what OMPL's discrete validator keeps when its second
   // sample collides) is progress: every blocked check adds its state.
   const unsigned states = statesWithShortGains(makeSetup(), 1.0, 1.0, &checks);

@@ -31,7 +31,8 @@
 // extensions are only limited by contact), "min_progress" (in validity-
 // checking steps of the edge: its length over the space's validSegmentCount,
 // the step of OMPL's discrete check of that edge; 1 by default: a blocked
-// extension gaining less than that adds nothing; with MDD-DUAL's validator a
+// extension gaining less than that adds nothing, nor one gaining less than
+// 1e-9 steps whatever the value, 0 included; with MDD-DUAL's validator a
 // rotating edge blocked within its first step returns lastValid 0, so a
 // value below 1 keeps no more of those edges than 1 does), "probe_steps"
 // (in the same steps; 4 by default, 0: no probe: before the motion check of

@@ -1,9 +1,9 @@
 // `mddual bench` and `mddual bench-report` on hostile input (issue 11): a
 // start or goal state in collision or out of bounds, planner parameters that
-// OMPL checks at set-up, a 10 MB problem name,
-// a log cut off inside its CPU-info block (ompl_benchmark_statistics loops
-// forever on it), a copied log, a report step that does not finish, and the
-// shard seeding described by --help.
+// OMPL checks at set-up, an output folder that cannot be written, a 10 MB
+// problem name, a log cut off inside its CPU-info block
+// (ompl_benchmark_statistics loops forever on it), a copied log, a report
+// step that does not finish, and the shard seeding described by --help.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
@@ -92,6 +92,18 @@ TEST(CliBenchHostile, PlannerParametersCheckedAtSetUpAreNamed) {
     const std::string expected = "mddual: tiny.cfg:" + std::to_string(line) + ": " + c.message;
     EXPECT_NE(run.err.find(expected), std::string::npos) << c.line << ": expected " << expected << "\ngot " << run.err;
   }
+}
+
+// An output folder that cannot be written is refused before the runs (it was
+// found when the log was written, after every run, without the reason).
+// /proc: a folder that exists and takes no new file, even for root.
+TEST(CliBenchHostile, AnUnwritableOutputFolderIsRefusedBeforeTheRuns) {
+  const TempDir dir;
+  const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()));
+  const CliRun run = runCli({"bench", cfg.string(), "--checkers", "mdd", "--runs", "1", "--output", "/proc"});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("mddual: cannot write in the output folder /proc: "), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("1 runs"), std::string::npos) << "no run: " << run.err;
 }
 
 TEST(CliBenchHostile, HugeNamesAreCutInMessages) {

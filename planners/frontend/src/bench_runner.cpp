@@ -3,10 +3,14 @@
 #include <ompl/tools/benchmark/Benchmark.h>
 #include <ompl/util/Exception.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <functional>
@@ -99,6 +103,24 @@ class MeteredPlanner : public ob::Planner {
   std::function<void()> solved_;
   std::string where_;
 };
+
+/// Throws unless a file can be written in `dir`: found before the runs, not
+/// when their log is written at the end (a read-only folder was reported
+/// after every run had finished, without the reason).
+void checkWritable(const std::filesystem::path& dir) {
+  const std::filesystem::path probe = dir / (".mddual-write-test-" + std::to_string(::getpid()));
+  errno = 0;
+  std::ofstream out(probe);
+  const bool ok = out && (out << "x" << std::flush);
+  const int error = errno;
+  out.close();
+  std::error_code ignored;
+  std::filesystem::remove(probe, ignored);
+  if (!ok) {
+    throw InvalidInputError("cannot write in the output folder " + dir.string() +
+                            (error != 0 ? ": " + std::string(std::strerror(error)) : ""));
+  }
+}
 
 /// Writes a path as OMPL's printAsMatrix does (one state per line).
 void savePath(const og::PathGeometric& path, const std::filesystem::path& file) {
@@ -265,8 +287,12 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     throw InvalidInputError("cannot create the output folder " + options.output_dir.string() +
                             (ec ? ": " + ec.message() : ""));
   }
+  checkWritable(options.output_dir);
   const std::filesystem::path paths_dir = options.output_dir / "paths";
-  if (cfg.save_paths != scene::SavePaths::kNone) std::filesystem::create_directories(paths_dir);
+  if (cfg.save_paths != scene::SavePaths::kNone) {
+    std::filesystem::create_directories(paths_dir, ec);
+    if (ec) throw InvalidInputError("cannot create the paths folder " + paths_dir.string() + ": " + ec.message());
+  }
 
   const PathVerifier verifier(problem.robot(), problem.world(), problem.scene->bounds, options.verifier);
   // Every checker's setup once before any run: ProblemSetup refuses a start
@@ -456,9 +482,11 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     bench.benchmark(request);
     if (failure) std::rethrow_exception(failure);
 
+    errno = 0;
     std::ofstream out(log.file);
     if (!out || !bench.saveResultsToStream(out) || !(out << std::flush)) {
-      throw InvalidInputError("cannot write the benchmark log " + log.file.string());
+      throw InvalidInputError("cannot write the benchmark log " + log.file.string() +
+                              (errno != 0 ? ": " + std::string(std::strerror(errno)) : ""));
     }
     for (const auto& [stem, best] : shortest) {
       std::string name = stem + "-shortest";

@@ -94,6 +94,19 @@ TEST(CliBenchHostile, PlannerParametersCheckedAtSetUpAreNamed) {
   }
 }
 
+// A bad value for a planner that --planners leaves out is refused too (it
+// passed unnoticed).
+TEST(CliBenchHostile, PlannersLeftOutByPlannersAreCheckedToo) {
+  const TempDir dir;
+  const fs::path cfg =
+      tinyConfigWith(fs::path(dir.path()), "mdd_rrtconnect =\n", "mdd_rrtconnect =\nkpiece =\nkpiece.range = nan\n");
+  const CliRun run = runCli({"bench", cfg.string(), "--checkers", "mdd", "--planners", "rrtconnect", "--runs", "1",
+                             "--output", (cfg.parent_path() / "out").string()});
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_NE(run.err.find("planner 'kpiece': parameter 'range' = 'nan': not a finite number"), std::string::npos)
+      << run.err;
+}
+
 // An output folder that cannot be written is refused before the runs (it was
 // found when the log was written, after every run, without the reason).
 // /proc: a folder that exists and takes no new file, even for root.

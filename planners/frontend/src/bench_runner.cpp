@@ -319,6 +319,14 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     std::map<const ob::Planner*, std::size_t> spec_of;
     std::map<std::string, int> seen;
     CheckStats solve_stats;
+    if (ci == 0) {
+      // The cfg's planners that --planners leaves out are checked too: a bad
+      // value in the cfg is refused whichever planners run (it passed).
+      for (const scene::PlannerSpec& listed : problem.config.planners) {
+        setup.makePlanner(listed);
+        setup.applyPlannerContext(listed);
+      }
+    }
     for (std::size_t i = 0; i < specs.size(); ++i) {
       ob::PlannerPtr p = setup.makePlanner(specs[i]);
       const int count = ++seen[p->getName()];

@@ -245,6 +245,36 @@ std::string checkedValue(const ob::GenericParam& param, const std::string& value
   return value;
 }
 
+/// APS's list of planners ("RRTConnect,PRM[max_nearest_neighbors=8]"): each
+/// name must be one APS makes. OMPL logs an unknown one as an error and goes
+/// on without it (and sets the parameters in its brackets on the planner
+/// before it, or on none: an empty list's last element), so each name is
+/// tried alone first on a scratch APS, OMPL's log silenced meanwhile.
+void checkApsPlanners(const std::string& value, const ob::SpaceInformationPtr& si, const std::string& where) {
+  std::vector<std::string> names(1);
+  int depth = 0;
+  for (const char c : value) {
+    depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+    if (c == ',' && depth == 0) {
+      names.emplace_back();
+    } else if (depth == 0 && c != ']') {
+      names.back() += c;
+    }
+  }
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  const auto unknown = std::find_if(names.begin(), names.end(), [&si](const std::string& name) {
+    og::AnytimePathShortening scratch(si);
+    scratch.params().setParam("planners", name);
+    return scratch.getNumPlanners() != 1;
+  });
+  ompl::msg::setLogLevel(level);
+  if (unknown != names.end()) {
+    throw InvalidInputError(where + ": '" + *unknown +
+                            "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM)");
+  }
+}
+
 /// A planner's display name: the name in the benchmark's log and table.
 void checkPlannerName(const std::string& planner, const std::string& value) {
   const std::string where = "planner '" + planner + "': name '" + value + "'";
@@ -287,6 +317,7 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
     } else {
       const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + value + "'";
       const std::string checked = checkedValue(*planner->params().getParams().at(key), value, it->first, key, where);
+      if (it->first == "aps" && key == "planners") checkApsPlanners(value, si, where);
       bool ok = false;
       try {
         ok = planner->params().setParam(key, checked);

@@ -339,6 +339,22 @@ TEST(PlannerFactory, ValuesThatCrashOmplAreRefused) {
   EXPECT_EQ(refusal("cforest", "num_threads", "0"), "");  // runs (checked alone in OMPL 1.5.2)
 }
 
+// APS's list of planners: OMPL logged an unknown name as an error and went
+// on without it (with a parameter after it in brackets, on the planner before
+// it, or on an empty list's last element).
+TEST(PlannerFactory, ApsPlannersMustBeOnesApsMakes) {
+  const std::string at = "planner 'aps': parameter 'planners' = '";
+  const std::string what = "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM)";
+  EXPECT_EQ(refusal("aps", "planners", "foo"), at + "foo': 'foo" + what);
+  EXPECT_EQ(refusal("aps", "planners", ""), at + "': '" + what);
+  EXPECT_EQ(refusal("aps", "planners", "RRTConnect,rrtconnect[range=1]"),
+            at + "RRTConnect,rrtconnect[range=1]': 'rrtconnect" + what);
+  EXPECT_EQ(refusal("aps", "planners", "RRTConnect,PRM"), "");  // OMPL's class names
+  const ob::PlannerPtr aps = makePlanner("aps", se3(), {{"planners", "RRTConnect[range=0.5],PRM"}});
+  EXPECT_EQ(aps->params().getParam("planners")->getValue(),
+            "RRTConnect[intermediate_states=0 range=0.5],PRM[max_nearest_neighbors=0]");
+}
+
 TEST(PlannerFactory, NamesAreCheckedForTheResultsTable) {
   EXPECT_EQ(refusal("mdd_rrtconnect", "name", ""), "planner 'mdd_rrtconnect': name is empty");
   const std::string table = "': control characters and '|' are not allowed (the results table)";

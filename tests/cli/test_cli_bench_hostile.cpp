@@ -98,19 +98,27 @@ TEST(CliBenchHostile, PlannerParametersCheckedAtSetUpAreNamed) {
 // passed unnoticed).
 TEST(CliBenchHostile, PlannersLeftOutByPlannersAreCheckedToo) {
   const TempDir dir;
-  const fs::path cfg =
-      tinyConfigWith(fs::path(dir.path()), "mdd_rrtconnect =\n", "mdd_rrtconnect =\nkpiece =\nkpiece.range = nan\n");
-  const CliRun run = runCli({"bench", cfg.string(), "--checkers", "mdd", "--planners", "rrtconnect", "--runs", "1",
-                             "--output", (cfg.parent_path() / "out").string()});
-  EXPECT_EQ(run.exit_code, 2) << run.err;
-  EXPECT_NE(run.err.find("planner 'kpiece': parameter 'range' = 'nan': not a finite number"), std::string::npos)
-      << run.err;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"kpiece.range = nan", "planner 'kpiece': parameter 'range' = 'nan': not a finite number"},
+      {"kpiece.min_valid_path_fraction = -1", "planner 'kpiece': min_valid_path_fraction: "},
+      {"kpiece.min_valid_path_fraction = 0", "planner 'kpiece': The minimum valid path fraction must be in"},
+  };
+  int k = 0;
+  for (const auto& [line, message] : cases) {
+    const fs::path cfg = tinyConfigWith(fs::path(dir.path()) / std::to_string(k++), "mdd_rrtconnect =\n",
+                                        "mdd_rrtconnect =\nkpiece =\n" + line + "\n");
+    const CliRun run = runCli({"bench", cfg.string(), "--checkers", "mdd", "--planners", "rrtconnect", "--runs", "1",
+                               "--output", (cfg.parent_path() / "out").string()});
+    EXPECT_EQ(run.exit_code, 2) << line << ": " << run.err;
+    EXPECT_NE(run.err.find(message), std::string::npos) << line << ": " << run.err;
+  }
 }
 
 // An output folder that cannot be written is refused before the runs (it was
 // found when the log was written, after every run, without the reason).
 // /proc: a folder that exists and takes no new file, even for root.
 TEST(CliBenchHostile, AnUnwritableOutputFolderIsRefusedBeforeTheRuns) {
+  if (!fs::exists("/proc/self")) GTEST_SKIP() << "no /proc (as root the command would create the folder)";
   const TempDir dir;
   const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()));
   const CliRun run = runCli({"bench", cfg.string(), "--checkers", "mdd", "--runs", "1", "--output", "/proc"});

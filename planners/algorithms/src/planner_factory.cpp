@@ -42,13 +42,14 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <functional>
 #include <limits>
 #include <map>
+#include <set>
 #include <type_traits>
 
 #include "mddual/error.h"
@@ -186,39 +187,58 @@ std::uint64_t hardMinimum(const std::string& planner, const std::string& key) {
   return it == minimums.end() ? 0 : it->second;
 }
 
-/// An integer parameter's value: digits, after a '-' for a signed type, within
-/// the type's range (OMPL's conversion turned -1 into 4294967295, 2.5 into 2
-/// and 1e300 into 1) and not below hardMinimum.
+/// A user's text in a message: control bytes as '?', cut to 200 bytes.
+std::string shown(const std::string& text) {
+  constexpr std::size_t kMaxShown = 200;
+  std::string out = text.substr(0, kMaxShown);
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  if (text.size() > kMaxShown) out += "... (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
+
+/// An integer parameter's value: decimal digits after an optional sign, within
+/// the parameter's type (OMPL's conversion turned -1 into 4294967295, 2.5
+/// into 2 and 1e300 into 1; "-0" is 0) and not below hardMinimum. Returns the
+/// value without a '+' (for OMPL's conversion).
 template <class T>
-void checkInteger(const ob::GenericParam& param, const std::string& value, const std::string& planner,
-                  const std::string& key, const std::string& where) {
-  const bool negative = !value.empty() && value[0] == '-';
-  const std::string digits = negative ? value.substr(1) : value;
+std::string checkInteger(const ob::GenericParam& param, const std::string& value, const std::string& planner,
+                         const std::string& key, const std::string& where) {
+  const bool sign = !value.empty() && (value[0] == '+' || value[0] == '-');
+  const bool negative = sign && value[0] == '-';
+  const std::string digits = sign ? value.substr(1) : value;
   const bool all_digits = !digits.empty() && std::all_of(digits.begin(), digits.end(),
                                                          [](unsigned char c) { return std::isdigit(c) != 0; });
   if (!all_digits) throw InvalidInputError(where + ": not an integer");
-  if (negative && !std::is_signed<T>::value) throw InvalidInputError(where + ": must be 0 or more");
-  errno = 0;
-  const long double v = std::strtold(value.c_str(), nullptr);
-  if (errno == ERANGE || v < static_cast<long double>(std::numeric_limits<T>::min()) ||
-      v > static_cast<long double>(std::numeric_limits<T>::max())) {
+  const bool zero = digits.find_first_not_of('0') == std::string::npos;
+  if (negative && !zero && !std::is_signed<T>::value) throw InvalidInputError(where + ": must be 0 or more");
+  // from_chars: exact for the type (no long double in between), a '-' only.
+  const std::string text = negative && !zero ? "-" + digits : digits;
+  T v{};
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (error != std::errc() || end != text.data() + text.size()) {
     throw InvalidInputError(where + ": out of range (" + std::to_string(std::numeric_limits<T>::min()) + " to " +
                             std::to_string(std::numeric_limits<T>::max()) + ")");
   }
   const std::uint64_t minimum = hardMinimum(planner, key);
-  if (!negative && v < static_cast<long double>(minimum)) {
+  bool below = false;
+  if constexpr (std::is_signed<T>::value) below = v < 0;
+  if (minimum > 0 && (below || static_cast<std::uint64_t>(v) < minimum)) {
     throw InvalidInputError(where + ": must be at least " + std::to_string(minimum) +
                             " (OMPL's planner fails below it)");
   }
   warnOutsideRange(param, static_cast<double>(v), where);
+  return text;
 }
 
 /// Checks `value` for the parameter's type and returns it as OMPL's setParam
 /// wants it: a real must be a finite number (OMPL would store NaN, or fail
 /// with a message that names neither), an integer as checkInteger says, a
-/// boolean one of true/false, 1/0, yes/no, on/off in any case (OMPL's
-/// conversion read "no", "off" and "abc" as true), passed on as "1" or "0".
-/// Other types (APS's list of planners) pass unchanged.
+/// boolean one of true/false, t/f, 1/0, yes/no, on/off in any case, passed
+/// on as "1" or "0" (OMPL's conversion read every text but "", "0", "false"
+/// and "f" in their usual cases as true: "no", "off", "abc"). Other types
+/// (APS's list of planners, checked by checkApsPlanners) pass unchanged.
 std::string checkedValue(const ob::GenericParam& param, const std::string& value, const std::string& planner,
                          const std::string& key, const std::string& where) {
   if (dynamic_cast<const ob::SpecificParam<double>*>(&param) != nullptr) {
@@ -230,54 +250,75 @@ std::string checkedValue(const ob::GenericParam& param, const std::string& value
     warnOutsideRange(param, v, where);
   } else if (dynamic_cast<const ob::SpecificParam<bool>*>(&param) != nullptr) {
     const std::string v = lower(value);
-    if (v == "1" || v == "true" || v == "yes" || v == "on") return "1";
-    if (v == "0" || v == "false" || v == "no" || v == "off") return "0";
-    throw InvalidInputError(where + ": not a boolean (true/false, 1/0, yes/no, on/off)");
+    if (v == "1" || v == "true" || v == "t" || v == "yes" || v == "on") return "1";
+    if (v == "0" || v == "false" || v == "f" || v == "no" || v == "off") return "0";
+    throw InvalidInputError(where + ": not a boolean (true/false, t/f, 1/0, yes/no, on/off)");
   } else if (dynamic_cast<const ob::SpecificParam<int>*>(&param) != nullptr) {
-    checkInteger<int>(param, value, planner, key, where);
+    return checkInteger<int>(param, value, planner, key, where);
   } else if (dynamic_cast<const ob::SpecificParam<unsigned int>*>(&param) != nullptr) {
-    checkInteger<unsigned int>(param, value, planner, key, where);
+    return checkInteger<unsigned int>(param, value, planner, key, where);
   } else if (dynamic_cast<const ob::SpecificParam<unsigned long>*>(&param) != nullptr) {
-    checkInteger<unsigned long>(param, value, planner, key, where);
+    return checkInteger<unsigned long>(param, value, planner, key, where);
   } else if (dynamic_cast<const ob::SpecificParam<long>*>(&param) != nullptr) {
-    checkInteger<long>(param, value, planner, key, where);
+    return checkInteger<long>(param, value, planner, key, where);
   }
   return value;
 }
 
-/// APS's list of planners ("RRTConnect,PRM[max_nearest_neighbors=8]"): each
-/// name must be one APS makes. OMPL logs an unknown one as an error and goes
-/// on without it (and sets the parameters in its brackets on the planner
-/// before it, or on none: an empty list's last element), so each name is
-/// tried alone first on a scratch APS, OMPL's log silenced meanwhile.
+/// APS's list of planners as OMPL 1.5.2 reads it ("RRTConnect,PRM[max_nearest_neighbors=8 range=1]"):
+/// split at ',', each entry at '[', ' ' and ']', the first piece the planner's
+/// class name (one of those below; not LazyLBTRRT, which aborts, see
+/// registry()), the others key=value for it. OMPL logs an unknown name and goes
+/// on without it, setting the parameters after it on the planner before it
+/// (or indexing an empty list), and indexes past a piece without '=': so
+/// every entry is checked here first, its parameters as makePlanner checks
+/// them (on a planner made for the purpose). An empty list is OMPL's
+/// default planners.
 void checkApsPlanners(const std::string& value, const ob::SpaceInformationPtr& si, const std::string& where) {
-  std::vector<std::string> names(1);
-  int depth = 0;
-  for (const char c : value) {
-    depth += c == '[' ? 1 : c == ']' ? -1 : 0;
-    if (c == ',' && depth == 0) {
-      names.emplace_back();
-    } else if (depth == 0 && c != ']') {
-      names.back() += c;
+  static const std::set<std::string> kApsNames = {
+      "BFMT",        "BiEST",   "BiTRRT",     "BITstar", "BKPIECE", "EST",      "FMT",     "KPIECE",  "LazyPRM",
+      "LazyPRMstar", "LazyRRT", "LBKPIECE",   "LBTRRT",  "PDST",    "PRM",      "PRMstar", "ProjEST", "RRT",
+      "RRTConnect",  "RRTstar", "RRTXstatic", "SBL",     "SPARS",   "SPARStwo", "SST",     "STRIDE",  "TRRT"};
+  if (value.empty()) return;
+  const auto split = [](const std::string& text, const std::string& at) {
+    std::vector<std::string> pieces(1);
+    for (const char c : text) {
+      if (at.find(c) != std::string::npos) {
+        pieces.emplace_back();
+      } else {
+        pieces.back() += c;
+      }
     }
-  }
-  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
-  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
-  const auto unknown = std::find_if(names.begin(), names.end(), [&si](const std::string& name) {
-    og::AnytimePathShortening scratch(si);
-    scratch.params().setParam("planners", name);
-    return scratch.getNumPlanners() != 1;
-  });
-  ompl::msg::setLogLevel(level);
-  if (unknown != names.end()) {
-    throw InvalidInputError(where + ": '" + *unknown +
-                            "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM)");
+    return pieces;
+  };
+  for (const std::string& entry : split(value, ",")) {
+    const std::vector<std::string> pieces = split(entry, "[ ]");
+    const std::string& name = pieces[0];
+    if (kApsNames.count(name) == 0) {
+      throw InvalidInputError(where + ": '" + shown(name) + "' in '" + shown(entry) +
+                              "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM; no spaces "
+                              "around commas; parameters in brackets are separated by spaces)");
+    }
+    std::vector<std::pair<std::string, std::string>> params;
+    for (std::size_t k = 1; k < pieces.size(); ++k) {
+      if (pieces[k].empty()) continue;
+      const std::size_t eq = pieces[k].find('=');
+      if (eq == std::string::npos || eq == 0) {
+        throw InvalidInputError(where + ": '" + shown(pieces[k]) + "' in '" + shown(entry) + "' is not key=value");
+      }
+      params.emplace_back(pieces[k].substr(0, eq), pieces[k].substr(eq + 1));
+    }
+    try {
+      makePlanner(canonicalPlannerName(name), si, params);
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError(where + ": " + e.what());
+    }
   }
 }
 
 /// A planner's display name: the name in the benchmark's log and table.
 void checkPlannerName(const std::string& planner, const std::string& value) {
-  const std::string where = "planner '" + planner + "': name '" + value + "'";
+  const std::string where = "planner '" + planner + "': name '" + shown(value) + "'";
   if (value.empty()) throw InvalidInputError("planner '" + planner + "': name is empty");
   if (std::any_of(value.begin(), value.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f || c == '|'; })) {
     throw InvalidInputError(where + ": control characters and '|' are not allowed (the results table)");
@@ -315,7 +356,7 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
     } else if (!planner->params().hasParam(key)) {
       throw InvalidInputError("planner '" + name + "' has no parameter '" + key + "'");
     } else {
-      const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + value + "'";
+      const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + shown(value) + "'";
       const std::string checked = checkedValue(*planner->params().getParams().at(key), value, it->first, key, where);
       if (it->first == "aps" && key == "planners") checkApsPlanners(value, si, where);
       bool ok = false;

@@ -48,6 +48,32 @@ int parseInt(const std::string& text, const std::string& what) {
   return std::stoi(text);
 }
 
+/// planner.setup(), with OMPL's errors there given the planner's place in the
+/// cfg (`where`): some parameters are checked only then (KPIECE1's
+/// min_valid_path_fraction and failed_expansion_score_factor).
+void setUpPlanner(ob::Planner& planner, const std::string& where) {
+  try {
+    planner.setup();
+  } catch (const ompl::Exception& e) {
+    throw InvalidInputError(where + e.what() + " (OMPL's check at the planner's set-up)");
+  }
+}
+
+/// The planner of a cfg entry with its problem context applied and the MDD
+/// validator's discarded fraction tried (*discarded): a bad value in either
+/// is refused with the entry's place.
+ob::PlannerPtr checkedPlanner(ProblemSetup& setup, const scene::PlannerSpec& spec, double* discarded) {
+  ob::PlannerPtr p = setup.makePlanner(spec);
+  setup.applyPlannerContext(spec);
+  *discarded = discardedLastValidFraction(*p);
+  try {
+    setup.setDiscardedLastValidFraction(*discarded);
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(setup.plannerWhere(spec) + "min_valid_path_fraction: " + e.what());
+  }
+  return p;
+}
+
 /// Runs a planner and calls `solved` the moment its solve() returns, before
 /// OMPL's benchmark checks the solution path: the checkers' counters are read
 /// there. Everything else is the wrapped planner's: name, parameters (the
@@ -83,13 +109,7 @@ class MeteredPlanner : public ob::Planner {
   void clear() override { inner_->clear(); }
   void clearQuery() override { inner_->clearQuery(); }
   void setup() override {
-    // Some parameters are checked only here (KPIECE1's min_valid_path_fraction
-    // and failed_expansion_score_factor): OMPL's message, with the place.
-    try {
-      inner_->setup();
-    } catch (const ompl::Exception& e) {
-      throw InvalidInputError(where_ + e.what() + " (OMPL's check at the planner's set-up)");
-    }
+    setUpPlanner(*inner_, where_);
     setup_ = true;
   }
   void checkValidity() override { inner_->checkValidity(); }
@@ -320,27 +340,23 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     std::map<std::string, int> seen;
     CheckStats solve_stats;
     if (ci == 0) {
-      // The cfg's planners that --planners leaves out are checked too: a bad
+      // The cfg's planners that --planners leaves out are checked too, set up
+      // on a copy of the problem (a set-up may add an objective to it): a bad
       // value in the cfg is refused whichever planners run (it passed).
       for (const scene::PlannerSpec& listed : problem.config.planners) {
-        setup.makePlanner(listed);
-        setup.applyPlannerContext(listed);
+        double discarded = 0.0;
+        const ob::PlannerPtr p = checkedPlanner(setup, listed, &discarded);
+        p->setProblemDefinition(setup.simpleSetup().getProblemDefinition()->clone());
+        setUpPlanner(*p, setup.plannerWhere(listed));
       }
     }
     for (std::size_t i = 0; i < specs.size(); ++i) {
-      ob::PlannerPtr p = setup.makePlanner(specs[i]);
+      discarded_fraction.push_back(0.0);
+      ob::PlannerPtr p = checkedPlanner(setup, specs[i], &discarded_fraction.back());  // tried once now
       const int count = ++seen[p->getName()];
       if (count > 1) p->setName(p->getName() + "_" + std::to_string(count));
-      setup.applyPlannerContext(specs[i]);
-      const std::string where = setup.plannerWhere(specs[i]);
-      discarded_fraction.push_back(discardedLastValidFraction(*p));
-      try {
-        setup.setDiscardedLastValidFraction(discarded_fraction.back());  // tried once now, as the context
-      } catch (const InvalidInputError& e) {
-        throw InvalidInputError(where + "min_valid_path_fraction: " + e.what());
-      }
       p = std::make_shared<MeteredPlanner>(
-          p, [&setup, &solve_stats] { solve_stats = setup.stats(); }, where);
+          p, [&setup, &solve_stats] { solve_stats = setup.stats(); }, setup.plannerWhere(specs[i]));
       spec_of[p.get()] = i;
       planners.push_back(p);
     }
@@ -492,9 +508,12 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
 
     errno = 0;
     std::ofstream out(log.file);
-    if (!out || !bench.saveResultsToStream(out) || !(out << std::flush)) {
+    if (!out) {
       throw InvalidInputError("cannot write the benchmark log " + log.file.string() +
                               (errno != 0 ? ": " + std::string(std::strerror(errno)) : ""));
+    }
+    if (!bench.saveResultsToStream(out) || !(out << std::flush)) {
+      throw InvalidInputError("cannot write the benchmark log " + log.file.string());
     }
     for (const auto& [stem, best] : shortest) {
       std::string name = stem + "-shortest";

@@ -299,6 +299,10 @@ TEST(PlannerFactory, IntegerAndBooleanParametersAreCheckedForTheirType) {
   EXPECT_EQ(refusal("fmt", "num_samples", ""), at + "': not an integer");
   EXPECT_EQ(refusal("fmt", "num_samples", "4294967296"), at + "4294967296': out of range (0 to 4294967295)");
   EXPECT_EQ(refusal("fmt", "num_samples", "5000"), "");
+  EXPECT_EQ(makePlanner("fmt", se3(), {{"num_samples", "+5000"}})->params().getParam("num_samples")->getValue(),
+            "5000");
+  EXPECT_EQ(makePlanner("fmt", se3(), {{"num_samples", "-0"}})->params().getParam("num_samples")->getValue(), "0");
+  EXPECT_EQ(refusal("fmt", "num_samples", "+-5"), at + "+-5': not an integer");
   // A signed integer (RRTXstatic's rejection_variant) takes a sign; a size_t (AIT*'s batch) none.
   EXPECT_EQ(refusal("rrtxstatic", "rejection_variant", "2"), "");
   EXPECT_EQ(refusal("rrtxstatic", "rejection_variant", "-1"),  // parsed, then OMPL's own check
@@ -309,18 +313,18 @@ TEST(PlannerFactory, IntegerAndBooleanParametersAreCheckedForTheirType) {
             "2147483647)");
   EXPECT_EQ(refusal("aitstar", "samples_per_batch", "-5"),
             "planner 'aitstar': parameter 'samples_per_batch' = '-5': must be 0 or more");
-  for (const char* yes : {"1", "true", "Yes", "ON"}) {
+  for (const char* yes : {"1", "true", "Yes", "ON", "t"}) {
     const ob::PlannerPtr p = makePlanner("mdd_rrtconnect", se3(), {{"rotate_first", yes}});
     EXPECT_EQ(p->params().getParam("rotate_first")->getValue(), "1") << yes;
   }
-  for (const char* no : {"0", "false", "no", "Off"}) {
+  for (const char* no : {"0", "false", "no", "Off", "F"}) {
     const ob::PlannerPtr p = makePlanner("mdd_rrtconnect", se3(), {{"rotate_first", no}});
     EXPECT_EQ(p->params().getParam("rotate_first")->getValue(), "0") << no;
   }
   for (const char* bad : {"abc", "", "-1", "00", "0.0"}) {
     EXPECT_EQ(refusal("mdd_rrtconnect", "rotate_first", bad),
               std::string("planner 'mdd_rrtconnect': parameter 'rotate_first' = '") + bad +
-                  "': not a boolean (true/false, 1/0, yes/no, on/off)");
+                  "': not a boolean (true/false, t/f, 1/0, yes/no, on/off)");
   }
 }
 
@@ -339,27 +343,40 @@ TEST(PlannerFactory, ValuesThatCrashOmplAreRefused) {
   EXPECT_EQ(refusal("cforest", "num_threads", "0"), "");  // runs (checked alone in OMPL 1.5.2)
 }
 
-// APS's list of planners: OMPL logged an unknown name as an error and went
-// on without it (with a parameter after it in brackets, on the planner before
-// it, or on an empty list's last element).
-TEST(PlannerFactory, ApsPlannersMustBeOnesApsMakes) {
+// APS's list of planners, read as OMPL 1.5.2 reads it: it logged an unknown
+// name and went on without it (the parameters after it went to the planner
+// before it, or indexed an empty list), and indexed past a piece without '='.
+TEST(PlannerFactory, ApsPlannersAreCheckedAsOmplReadsThem) {
   const std::string at = "planner 'aps': parameter 'planners' = '";
-  const std::string what = "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM)";
-  EXPECT_EQ(refusal("aps", "planners", "foo"), at + "foo': 'foo" + what);
-  EXPECT_EQ(refusal("aps", "planners", ""), at + "': '" + what);
-  EXPECT_EQ(refusal("aps", "planners", "RRTConnect,rrtconnect[range=1]"),
-            at + "RRTConnect,rrtconnect[range=1]': 'rrtconnect" + what);
-  EXPECT_EQ(refusal("aps", "planners", "RRTConnect,PRM"), "");  // OMPL's class names
-  const ob::PlannerPtr aps = makePlanner("aps", se3(), {{"planners", "RRTConnect[range=0.5],PRM"}});
+  const std::string what =
+      "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM; no spaces around commas; parameters "
+      "in brackets are separated by spaces)";
+  EXPECT_EQ(refusal("aps", "planners", "foo"), at + "foo': 'foo' in 'foo" + what);
+  EXPECT_EQ(refusal("aps", "planners", "RRTConnect, PRM"), at + "RRTConnect, PRM': '' in ' PRM" + what);
+  EXPECT_EQ(refusal("aps", "planners", "PRM[max_nearest_neighbors=8,range=1]"),
+            at + "PRM[max_nearest_neighbors=8,range=1]': 'range=1' in 'range=1]" + what);
+  EXPECT_EQ(refusal("aps", "planners", "LazyLBTRRT"), at + "LazyLBTRRT': 'LazyLBTRRT' in 'LazyLBTRRT" + what);
+  EXPECT_EQ(refusal("aps", "planners", "RRTConnect[range]"),
+            at + "RRTConnect[range]': 'range' in 'RRTConnect[range]' is not key=value");
+  // The bracketed parameters are checked as a planner's own.
+  EXPECT_EQ(refusal("aps", "planners", "STRIDE[degree=0]"),
+            at + "STRIDE[degree=0]': planner 'stride': parameter 'degree' = '0': must be at least 1 (OMPL's planner "
+                 "fails below it)");
+  EXPECT_EQ(refusal("aps", "planners", "RRTConnect[rnage=1]"),
+            at + "RRTConnect[rnage=1]': planner 'rrtconnect' has no parameter 'rnage'");
+  EXPECT_EQ(refusal("aps", "planners", ""), "");  // OMPL's default planners
+  EXPECT_EQ(refusal("aps", "planners", "RRTConnect,PRM"), "");
+  const ob::PlannerPtr aps =
+      makePlanner("aps", se3(), {{"planners", "RRTConnect[range=0.5],PRM[max_nearest_neighbors=8]"}});
   EXPECT_EQ(aps->params().getParam("planners")->getValue(),
-            "RRTConnect[intermediate_states=0 range=0.5],PRM[max_nearest_neighbors=0]");
+            "RRTConnect[intermediate_states=0 range=0.5],PRM[max_nearest_neighbors=8]");
 }
 
 TEST(PlannerFactory, NamesAreCheckedForTheResultsTable) {
   EXPECT_EQ(refusal("mdd_rrtconnect", "name", ""), "planner 'mdd_rrtconnect': name is empty");
   const std::string table = "': control characters and '|' are not allowed (the results table)";
   EXPECT_EQ(refusal("mdd_rrtconnect", "name", "x|y"), "planner 'mdd_rrtconnect': name 'x|y" + table);
-  EXPECT_EQ(refusal("rrt", "name", "two\nlines"), "planner 'rrt': name 'two\nlines" + table);
+  EXPECT_EQ(refusal("rrt", "name", "two\nlines"), "planner 'rrt': name 'two?lines" + table);  // shown as '?'
   // Another planner's name (it read as a second instance of that planner);
   // the planner's own name in any spelling is fine.
   EXPECT_EQ(refusal("mdd_rrtconnect", "name", "rrtconnect"),
@@ -369,6 +386,8 @@ TEST(PlannerFactory, NamesAreCheckedForTheResultsTable) {
   EXPECT_EQ(refusal("rrt", "name", "RRT"), "");
   EXPECT_EQ(refusal("kpiece", "name", "KPIECE1"), "");
   EXPECT_EQ(refusal("rrt", "name", "rrt with range 2"), "");
+  EXPECT_EQ(refusal("rrt", "name", std::string(300, 'x') + "|"),
+            "planner 'rrt': name '" + std::string(200, 'x') + "... (301 bytes)" + table);
 }
 
 }  // namespace

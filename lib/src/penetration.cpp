@@ -40,11 +40,13 @@ namespace {
 using detail::PairGeometry;
 using detail::PdPlane;
 
-/// The delta a method runs with: the input's, or the method's default when 0.
+/// The delta a method runs with: the input's, or the method's default when 0;
+/// 0 for the methods without one. A delta other than 0 must be in range for
+/// every method (a NaN or negative one given to kExact was ignored silently).
 double methodDelta(PenetrationMethod method, double delta, const char* what) {
+  if (delta != 0.0) detail::checkDelta(delta, what);
   if (method != PenetrationMethod::kApprox && method != PenetrationMethod::kShallow) return 0.0;
   if (delta == 0.0) return method == PenetrationMethod::kApprox ? defaults::kApproxPdDelta : defaults::kShallowPdDelta;
-  detail::checkDelta(delta, what);
   return delta;
 }
 

@@ -10,13 +10,36 @@ DoubleArray toDoubleArray(const py::handle& obj, const char* name, const char* e
   if (obj.is_none()) {
     throw py::type_error(std::string(name) + ": expected " + expected + ", got None");
   }
-  DoubleArray a = DoubleArray::ensure(obj);
-  if (!a) {
+  if (DoubleArray::check_(obj)) return py::reinterpret_borrow<DoubleArray>(obj);  // float64, C order already
+  // NumPy's own conversions, so that a MemoryError stays one (pybind11's
+  // cast reported it as "not convertible"), and a look at the values' kind
+  // first: a cast to float64 took complex numbers (dropping the imaginary
+  // part), dates and numeric strings.
+  static const py::object* const asarray =
+      new py::object(py::module_::import("numpy").attr("asarray"));  // kept to the process's exit
+  const auto notConvertible = [&](const std::string& why) {
     const std::string type = py::str(py::type::of(obj).attr("__name__"));
-    throw py::type_error(std::string(name) + ": expected " + expected + ", got a " + type +
-                         " that is not convertible to an array of float64");
+    return py::type_error(std::string(name) + ": expected " + expected + ", got a " + type + why);
+  };
+  py::object converted;
+  try {
+    converted = (*asarray)(obj);
+  } catch (py::error_already_set& e) {
+    if (e.matches(PyExc_MemoryError)) throw;
+    throw notConvertible(" that is not convertible to an array of float64");
   }
-  return a;
+  const char kind = py::reinterpret_borrow<py::array>(converted).dtype().kind();
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f') {
+    const std::string dtype = py::str(py::reinterpret_borrow<py::array>(converted).dtype());
+    throw notConvertible(" of dtype " + dtype + " (real numbers only: no complex, date, string or object values)");
+  }
+  try {
+    converted = (*asarray)(converted, py::arg("dtype") = "float64", py::arg("order") = "C");
+  } catch (py::error_already_set& e) {
+    if (e.matches(PyExc_MemoryError)) throw;
+    throw notConvertible(" that is not convertible to an array of float64");
+  }
+  return py::reinterpret_borrow<DoubleArray>(converted);
 }
 
 std::string shapeText(const py::array& a) {

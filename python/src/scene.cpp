@@ -71,18 +71,35 @@ class StateHolder {
   StateHolder(const StateHolder&) = delete;
   StateHolder& operator=(const StateHolder&) = delete;
   ob::State* get() const { return state_; }
-  /// Sets the state from `d` numbers; InvalidInputError naming `what` for a
-  /// non-finite one.
+  /// Sets the state from `d` numbers (an SE(3) state's quaternion made unit);
+  /// InvalidInputError naming `what` for a non-finite one or a zero quaternion.
   void set(const double* values, int d, const std::string& what) {
     for (int i = 0; i < d; ++i) {
       if (!std::isfinite(values[i])) {
         throw InvalidInputError(what + ": component " + std::to_string(i) + " is not finite");
       }
     }
-    space_->copyFromReals(state_, std::vector<double>(values, values + d));
+    std::vector<double> reals(values, values + d);
+    if (d == kSe3Dimension) normaliseQuaternion(&reals, what);
+    space_->copyFromReals(state_, reals);
   }
 
  private:
+  /// SE(3)'s quaternion (components 3 to 6) made unit: scaled by its largest
+  /// component first (its norm overflows at 1e200, underflows at 1e-300);
+  /// InvalidInputError when it is zero (no rotation: OMPL's SO(3) code aborted
+  /// on it in check_edges, pose() read it as the identity).
+  static void normaliseQuaternion(std::vector<double>* reals, const std::string& what) {
+    Eigen::Map<Eigen::Vector4d> q(reals->data() + 3);
+    const double largest = q.cwiseAbs().maxCoeff();
+    if (!(largest > 0.0)) {
+      throw InvalidInputError(what + ": the quaternion (components 3 to 6) is zero, not a rotation");
+    }
+    q /= largest;
+    q.normalize();
+  }
+  static constexpr int kSe3Dimension = 7;  ///< x, y, z, qx, qy, qz, qw
+
   ob::StateSpacePtr space_;
   ob::State* state_;
 };

@@ -319,6 +319,25 @@ def test_polytope_argument_must_be_a_polytope(unit_cube):
         mddual.mdd(cube_points(), None, unit_cube, None, [1.0, 0.0, 0.0])
 
 
+def test_complex_date_and_string_values_are_refused(unit_cube):
+    # A hostile-input hunt: NumPy's cast to float64 dropped the imaginary
+    # part (direction -1j -> 0) and read dates and numeric strings as numbers.
+    for bad in (np.array([-1j, 1, 0]), np.array(["-1", "0", "0"]), np.array([1, 2, 3], dtype="timedelta64[s]"),
+                np.array([b"1", b"0", b"0"])):
+        with pytest.raises(TypeError, match=r"direction: expected .* of dtype .*real numbers only"):
+            mddual.mdd(unit_cube, None, unit_cube, translation(3.0), bad)
+    with pytest.raises(TypeError, match="max_distance"):
+        mddual.toi_batch(unit_cube, None, unit_cube, translation(3.0), [-1, 0, 0], max_distance="3")
+
+
+def test_an_array_too_large_to_convert_raises_memory_error(unit_cube):
+    # A broadcast view of 10^10 poses (no memory of its own) needs 1.2 TiB as
+    # float64 in C order: NumPy's MemoryError, not "not convertible".
+    X = np.broadcast_to(np.eye(4, dtype=np.float32), (10**10, 4, 4))
+    with pytest.raises(MemoryError):
+        mddual.intersect_batch(unit_cube, None, unit_cube, X)
+
+
 def test_any_layout_and_numeric_dtype_is_accepted(unit_cube):
     # Fortran-order and strided arrays, integers and lists are converted.
     X = np.asfortranarray(translation(3.0))

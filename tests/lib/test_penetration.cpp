@@ -452,8 +452,18 @@ TEST(PenetrationErrors, BadInputsNameWhatIsWrong) {
     }
     EXPECT_NE(message([&] { width({&cube, I, PenetrationMethod::kApprox, delta}); }).find("delta"), std::string::npos);
   }
-  // delta is ignored by the exact methods.
-  EXPECT_EQ(message([&] { penetrationDepth({&cube, I, &cube, I, PenetrationMethod::kExact, -1.0}); }), "(no error)");
+  // The exact methods do not use delta, but refuse a bad one all the same (a
+  // NaN or negative delta passed silently; a hostile-input hunt on the Python
+  // module); 0 and in-range values are accepted.
+  for (PenetrationMethod m : {PenetrationMethod::kExact, PenetrationMethod::kBruteForce}) {
+    for (double delta : {-1.0, -1e-300, 1e4, std::nan("")}) {
+      const std::string what = message([&] { penetrationDepth({&cube, I, &cube, I, m, delta}); });
+      EXPECT_NE(what.find("penetrationDepth: delta "), std::string::npos) << what;
+      EXPECT_NE(message([&] { width({&cube, I, m, delta}); }).find("width: delta "), std::string::npos);
+    }
+    EXPECT_EQ(message([&] { penetrationDepth({&cube, I, &cube, I, m, 0.0}); }), "(no error)");
+    EXPECT_EQ(message([&] { penetrationDepth({&cube, I, &cube, I, m, 0.5}); }), "(no error)");
+  }
   EXPECT_NE(message([&] {
               penetrationDepth({&cube, I, &cube, I, static_cast<PenetrationMethod>(9)});
             }).find("unknown method"),

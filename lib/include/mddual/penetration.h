@@ -110,8 +110,9 @@ struct PenetrationInput {
   PenetrationMethod method = PenetrationMethod::kExact;
   /// kApprox / kShallow: the accuracy parameter. 0 selects the method's
   /// default (defaults::kApproxPdDelta, defaults::kShallowPdDelta); otherwise
-  /// it must lie in [defaults::kMinPdDelta, defaults::kMaxPdDelta]. Ignored by
-  /// kExact and kBruteForce.
+  /// it must lie in [defaults::kMinPdDelta, defaults::kMaxPdDelta], for every
+  /// method (kExact and kBruteForce do not use it: InvalidInputError for a
+  /// NaN or out-of-range one all the same).
   double delta = 0.0;
 };
 

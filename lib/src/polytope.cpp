@@ -134,8 +134,15 @@ void PolytopeBuilder::build(const std::vector<Eigen::Vector3d>& points_P) {
     off_plane = std::max(off_plane, std::abs(d.dot(normal)));
   }
   if (off_line <= defaults::kCollinearToleranceRel * diameter) {
-    throw DegenerateGeometryError("polytope: all " + std::to_string(points.size()) +
-                                  " points are collinear (fewer than three non-collinear points)");
+    // Within the tolerance of the points' extent: a box 1e12 long and 0.8
+    // wide is collinear here (said so, with both sizes: it read as an error
+    // in the input's coordinates).
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "polytope: all " << points.size() << " points are collinear (fewer than three non-collinear points): "
+        << "they lie within " << off_line << " of a line and span about " << diameter << ", below "
+        << defaults::kCollinearToleranceRel << " of their extent";
+    throw DegenerateGeometryError(msg.str());
   }
   // Phase 3 and 4: hull and topology.
   if (off_plane <= defaults::kFlatToleranceRel * diameter) {

@@ -165,6 +165,19 @@ TEST(Polytope, ErrorsNameTheProblem) {
   EXPECT_NE(message({{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}}).find("non-finite"), std::string::npos);
   EXPECT_NE(message({{0, 0, 0}, {1, 0, 0}}).find("degenerate: polytope: 2 point(s)"), std::string::npos);
   EXPECT_NE(message({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}).find("collinear"), std::string::npos);
+  // A box 1e12 long and 0.8 wide: collinear within the relative tolerance,
+  // said with both sizes (a hostile-input hunt read it as a wrong message).
+  std::vector<Eigen::Vector3d> needle;
+  for (double x : {0.0, 1e12}) {
+    for (double y : {0.0, 0.8}) {
+      for (double z : {0.0, 0.8}) needle.emplace_back(x, y, z);
+    }
+  }
+  const std::string long_box = message(needle);
+  EXPECT_NE(long_box.find("degenerate: polytope: all 8 points are collinear (fewer than three non-collinear "
+                          "points): they lie within 0.566 of a line and span about 1e+12, below 1e-10 of their extent"),
+            std::string::npos)
+      << long_box;
   EXPECT_NE(message({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}).find("coincide"), std::string::npos);
   // Out of the supported range (defaults::kMaxCoordinate, kMinSize): named,
   // instead of "collinear" or an Euler-formula failure deep in the hull.

@@ -46,7 +46,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace mp = mddual::planning;
 using Clock = std::chrono::steady_clock;
-using mp::clipForMessage;
 
 /// Default bound on each step of the report (ompl_benchmark_statistics,
 /// scripts/bench_report.py), seconds: both take seconds on the logs of a

@@ -234,11 +234,6 @@ JsonLinesIo::JsonLinesIo(const std::string& input_path, const std::string& outpu
   }
 }
 
-std::string clipForMessage(const std::string& text) {
-  if (text.size() <= kMaxQuotedChars) return text;
-  return text.substr(0, kMaxQuotedChars) + "... (" + std::to_string(text.size()) + " bytes)";
-}
-
 JsonLinesSummary runJsonLines(std::istream& in, std::ostream& out, const LineHandler& handler,
                               const std::string& input_name) {
   JsonLinesSummary summary;

@@ -8,6 +8,8 @@
 //   - writers for the library's result types (NaN -> null).
 #pragma once
 
+#include "mddual/error.h"
+
 #include <Eigen/Core>
 #include <cstddef>
 #include <fstream>
@@ -73,12 +75,7 @@ struct JsonLinesSummary {
 /// the stack. Such a line is refused before it is parsed.
 inline constexpr int kMaxJsonDepth = 64;
 
-/// Longest user string quoted in a message (bytes); longer ones are cut with
-/// "... (N bytes)".
-inline constexpr std::size_t kMaxQuotedChars = 200;
-
-/// `text` itself, or its first kMaxQuotedChars bytes + "... (N bytes)".
-std::string clipForMessage(const std::string& text);
+// clipForMessage (a user's string in a message): mddual/error.h.
 
 /// Reads `in` to the end, one JSON object per line, in constant memory. Blank
 /// lines are skipped; every other line gets exactly one output line on `out`,

@@ -3,6 +3,7 @@
 // anything else; the message names what is wrong and where.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -41,5 +42,20 @@ class NumericalError : public Error {
  public:
   using Error::Error;
 };
+
+/// Bytes of a user's text quoted in a message (a 10 MB name or value is cut).
+inline constexpr std::size_t kMaxQuotedChars = 200;
+
+/// A user's text as messages quote it: control bytes (NUL, newline, escape)
+/// shown as '?', and at most kMaxQuotedChars bytes followed by "... (N
+/// bytes)". Shared by the library, the planning layer and the CLI.
+inline std::string clipForMessage(const std::string& text) {
+  std::string out = text.substr(0, kMaxQuotedChars);
+  for (char& c : out) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  }
+  if (text.size() > kMaxQuotedChars) out += "... (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
 
 }  // namespace mddual

@@ -187,17 +187,6 @@ std::uint64_t hardMinimum(const std::string& planner, const std::string& key) {
   return it == minimums.end() ? 0 : it->second;
 }
 
-/// A user's text in a message: control bytes as '?', cut to 200 bytes.
-std::string shown(const std::string& text) {
-  constexpr std::size_t kMaxShown = 200;
-  std::string out = text.substr(0, kMaxShown);
-  for (char& c : out) {
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  }
-  if (text.size() > kMaxShown) out += "... (" + std::to_string(text.size()) + " bytes)";
-  return out;
-}
-
 /// An integer parameter's value: decimal digits after an optional sign, within
 /// the parameter's type (OMPL's conversion turned -1 into 4294967295, 2.5
 /// into 2 and 1e300 into 1; "-0" is 0) and not below hardMinimum. Returns the
@@ -295,7 +284,7 @@ void checkApsPlanners(const std::string& value, const ob::SpaceInformationPtr& s
     const std::vector<std::string> pieces = split(entry, "[ ]");
     const std::string& name = pieces[0];
     if (kApsNames.count(name) == 0) {
-      throw InvalidInputError(where + ": '" + shown(name) + "' in '" + shown(entry) +
+      throw InvalidInputError(where + ": '" + clipForMessage(name) + "' in '" + clipForMessage(entry) +
                               "' is not a planner APS makes (OMPL's class names, e.g. RRTConnect,PRM; no spaces "
                               "around commas; parameters in brackets are separated by spaces)");
     }
@@ -304,7 +293,8 @@ void checkApsPlanners(const std::string& value, const ob::SpaceInformationPtr& s
       if (pieces[k].empty()) continue;
       const std::size_t eq = pieces[k].find('=');
       if (eq == std::string::npos || eq == 0) {
-        throw InvalidInputError(where + ": '" + shown(pieces[k]) + "' in '" + shown(entry) + "' is not key=value");
+        throw InvalidInputError(where + ": '" + clipForMessage(pieces[k]) + "' in '" + clipForMessage(entry) +
+                                "' is not key=value");
       }
       params.emplace_back(pieces[k].substr(0, eq), pieces[k].substr(eq + 1));
     }
@@ -318,7 +308,7 @@ void checkApsPlanners(const std::string& value, const ob::SpaceInformationPtr& s
 
 /// A planner's display name: the name in the benchmark's log and table.
 void checkPlannerName(const std::string& planner, const std::string& value) {
-  const std::string where = "planner '" + planner + "': name '" + shown(value) + "'";
+  const std::string where = "planner '" + planner + "': name '" + clipForMessage(value) + "'";
   if (value.empty()) throw InvalidInputError("planner '" + planner + "': name is empty");
   if (std::any_of(value.begin(), value.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f || c == '|'; })) {
     throw InvalidInputError(where + ": control characters and '|' are not allowed (the results table)");
@@ -356,7 +346,7 @@ ob::PlannerPtr makePlanner(const std::string& name, const ob::SpaceInformationPt
     } else if (!planner->params().hasParam(key)) {
       throw InvalidInputError("planner '" + name + "' has no parameter '" + key + "'");
     } else {
-      const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + shown(value) + "'";
+      const std::string where = "planner '" + name + "': parameter '" + key + "' = '" + clipForMessage(value) + "'";
       const std::string checked = checkedValue(*planner->params().getParams().at(key), value, it->first, key, where);
       if (it->first == "aps" && key == "planners") checkApsPlanners(value, si, where);
       bool ok = false;

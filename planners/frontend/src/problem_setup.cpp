@@ -233,11 +233,6 @@ Problem loadProblem(const std::filesystem::path& cfg) {
   return makeProblem(std::move(config), std::move(scene));
 }
 
-std::string clipForMessage(const std::string& text) {
-  if (text.size() <= kMaxQuotedChars) return text;
-  return text.substr(0, kMaxQuotedChars) + "... (" + std::to_string(text.size()) + " bytes)";
-}
-
 namespace {
 
 /// "<cfg>:<line>: " for a planner entry of the cfg, "<cfg>: " for one made

@@ -8,14 +8,15 @@
 #include <string_view>
 #include <vector>
 
+#include "mddual/error.h"
 #include "mddual/scene/loaders.h"
 #include "mddual/scene/scene.h"
 
 namespace mddual::scene::detail {
 
-/// "'text'".
+/// "'text'", as clipForMessage shows it.
 inline std::string quote(const std::string& text) {
-  return "'" + text + "'";
+  return "'" + clipForMessage(text) + "'";
 }
 
 /// The path as the user gave it, for messages.

@@ -62,6 +62,7 @@
 #include <utility>
 #include <vector>
 
+#include "mddual/error.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/mdd_checkers.h"
 #include "mddual/planning/state_space.h"
@@ -107,11 +108,7 @@ Problem loadProblem(const std::filesystem::path& cfg);
 /// A Problem from a config and scene made in code.
 Problem makeProblem(scene::ProblemConfig config, scene::ProblemScene scene);
 
-/// Longest user string (a name, a flag's value) quoted in a message, bytes;
-/// longer ones are cut by clipForMessage.
-inline constexpr std::size_t kMaxQuotedChars = 200;
-/// `text`, or its first kMaxQuotedChars bytes + "... (N bytes)".
-std::string clipForMessage(const std::string& text);
+// clipForMessage (a user's string in a message): mddual/error.h.
 
 /// Colliding (robot piece, world piece) pairs named by checkStartAndGoal; the
 /// rest are counted.

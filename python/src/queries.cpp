@@ -2,6 +2,7 @@
 // arguments are converted under the GIL; the query itself runs without it.
 #include "mddual/brute_force.h"
 #include "mddual/distance.h"
+#include "mddual/error.h"
 #include "mddual/penetration.h"
 #include "mddual/query.h"
 
@@ -15,7 +16,8 @@ namespace mddual::python {
 QueryMethod queryMethodFrom(const std::string& text, const char* name) {
   if (text == "mddual") return QueryMethod::kMddual;
   if (text == "brute") return QueryMethod::kBrute;
-  throw py::value_error(std::string(name) + ": expected 'mddual' or 'brute', got '" + text + "'");
+  throw py::value_error(std::string(name) + ": expected 'mddual' or 'brute', got '" + mddual::clipForMessage(text) +
+                        "'");
 }
 
 PenetrationMethod penetrationMethodFrom(const std::string& text, const char* name) {
@@ -23,7 +25,8 @@ PenetrationMethod penetrationMethodFrom(const std::string& text, const char* nam
                                    PenetrationMethod::kBruteForce}) {
     if (text == toString(method)) return method;
   }
-  throw py::value_error(std::string(name) + ": expected 'exact', 'shallow', 'approx' or 'brute', got '" + text + "'");
+  throw py::value_error(std::string(name) + ": expected 'exact', 'shallow', 'approx' or 'brute', got '" +
+                        mddual::clipForMessage(text) + "'");
 }
 
 namespace {

@@ -109,7 +109,7 @@ scene::SpaceKind spaceKindFrom(const std::string& text) {
        {scene::SpaceKind::kSE2, scene::SpaceKind::kSE3, scene::SpaceKind::kR2, scene::SpaceKind::kR3}) {
     if (text == mp::toString(mp::toPlanningKind(kind))) return kind;
   }
-  throw py::value_error("space: expected 'SE2', 'SE3', 'R2' or 'R3', got '" + text + "'");
+  throw py::value_error("space: expected 'SE2', 'SE3', 'R2' or 'R3', got '" + mddual::clipForMessage(text) + "'");
 }
 
 std::string itemName(const char* name, std::size_t k, bool batched) {

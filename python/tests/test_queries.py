@@ -330,6 +330,11 @@ def test_complex_date_and_string_values_are_refused(unit_cube):
         mddual.toi_batch(unit_cube, None, unit_cube, translation(3.0), [-1, 0, 0], max_distance="3")
 
 
+def test_a_method_name_is_shown_safely(unit_cube):
+    with pytest.raises(ValueError, match=r"got '\?a'$"):
+        mddual.intersect(unit_cube, None, unit_cube, None, method="\x00a")
+
+
 def test_an_array_too_large_to_convert_raises_memory_error(unit_cube):
     # A broadcast view of 10^10 poses (no memory of its own) needs 1.2 TiB as
     # float64 in C order: NumPy's MemoryError, not "not convertible".

@@ -36,6 +36,9 @@ constexpr double kAreaTolerance = 1e-5;
 /// assimp stores vertex coordinates as 32-bit floats: a coordinate beyond
 /// this (FLT_MAX, about 3.4e38) in the file is read as infinity.
 constexpr double kFloatMax = static_cast<double>(std::numeric_limits<float>::max());
+/// floatRoundingWarning's threshold: a float spacing above 1e-4 of the mesh's
+/// size (a 1 m part rounded by more than 0.1 mm; the float spacing near 1e3 m).
+constexpr double kFloatRoundingWarnRel = 1e-4;
 /// Before it builds the hull, the convexity test looks for a witness of
 /// non-convexity (a triangle with mesh points beyond both sides of its plane)
 /// in at most this many point-plane evaluations (about 20 ms): a non-convex
@@ -485,6 +488,27 @@ MeshData readMesh(const std::filesystem::path& file) {
   return data;
 }
 
+/// A warning when assimp's 32-bit floats round the mesh's coordinates by
+/// more than kFloatRoundingWarnRel of its size (a mesh far from its own
+/// origin: a hostile-input hunt's 1e8 offset lost its shape with only a
+/// slivers warning), else "".
+std::string floatRoundingWarning(const MeshData& data, const std::string& file) {
+  if (data.vertices.empty()) return "";
+  Eigen::Vector3d lo = data.vertices[0], hi = data.vertices[0];
+  for (const Eigen::Vector3d& v : data.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const double size = (hi - lo).norm();
+  const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const double spacing = largest * static_cast<double>(std::numeric_limits<float>::epsilon());
+  if (!(spacing > kFloatRoundingWarnRel * size)) return "";
+  return file + ": coordinates up to " + shortNumber(largest) + " in a mesh " + shortNumber(size) +
+         " across: the mesh reader (assimp) keeps 32-bit floats, which round them by up to " + shortNumber(spacing) +
+         " (" + shortNumber(100.0 * spacing / size) + "% of its size); keep the mesh near its own origin and place " +
+         "it with the URDF's or the cfg's pose";
+}
+
 std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const Eigen::Vector3d& scale,
                                         const Eigen::Isometry3d& X_OM, const LoadOptions& options,
                                         const std::string& origin_prefix, MeshInfo* info) {
@@ -493,7 +517,13 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   // is refused): most triangles would be skipped as degenerate.
   if ((scale.array() == 0.0).any()) throw SceneError(display(file) + ": the mesh scale has a zero entry");
   if (!X_OM.matrix().allFinite()) throw SceneError(display(file) + ": the mesh pose has a non-finite entry");
-  return meshDataPieces(readMesh(file), file, scale, X_OM, options, origin_prefix, info);
+  const MeshData data = readMesh(file);
+  MeshInfo local;
+  MeshInfo& out = info != nullptr ? *info : local;
+  std::vector<Piece> pieces = meshDataPieces(data, file, scale, X_OM, options, origin_prefix, &out);
+  const std::string rounded = floatRoundingWarning(data, display(file));
+  if (!rounded.empty()) out.warnings.push_back(rounded);
+  return pieces;
 }
 
 std::vector<Piece> meshDataPieces(const MeshData& data, const std::filesystem::path& file, const Eigen::Vector3d& scale,

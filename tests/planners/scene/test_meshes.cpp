@@ -639,6 +639,31 @@ TEST(MeshErrors, VertexBeyondFloatRangeSaysSo) {
   expectSceneError([&] { loadWorld(nan_file); }, {"nan.obj: vertex 2", "y coordinate is NaN"});
 }
 
+// A mesh far from its own origin: assimp's 32-bit floats round its corners
+// (a hostile-input hunt's cube at 1e8 lost its shape with only a slivers
+// warning). The warning gives the rounding against the mesh's size; the same
+// cube at the origin, or at 1e3 (a spacing of 1.2e-4 against 1e-4 of 1.7),
+// gets none.
+TEST(MeshErrors, AMeshFarFromItsOriginIsWarnedOfFloatRounding) {
+  TempDir dir;
+  const auto cubeAt = [&](double x) {
+    return dir.write("cube" + std::to_string(static_cast<long long>(x)) + ".stl",
+                     asciiStl(boxTriangles({x, 0, 0}, {x + 1, 1, 1})));
+  };
+  for (const double x : {0.0, 1e3}) {
+    MeshInfo info;
+    meshPieces(cubeAt(x), kOnes, kIdentity, {}, &info);
+    EXPECT_FALSE(mentions(info.warnings, "32-bit floats")) << x;
+  }
+  MeshInfo info;
+  meshPieces(cubeAt(1e5), kOnes, kIdentity, {}, &info);
+  EXPECT_TRUE(mentions(info.warnings,
+                       "cube100000.stl: coordinates up to 1e+05 in a mesh 1.73 across: the mesh "
+                       "reader (assimp) keeps 32-bit floats, which round them by up to 0.0119 (0.688% "
+                       "of its size)"))
+      << (info.warnings.empty() ? "(no warning)" : info.warnings[0]);
+}
+
 TEST(MeshErrors, DeeplyNestedColladaIsRefusedBeforeParsing) {
   TempDir dir;
   std::string text = colladaBox({0, 0, 0}, {1, 1, 1}, "Y_UP");

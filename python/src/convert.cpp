@@ -6,6 +6,28 @@
 
 namespace mddual::python {
 
+namespace {
+
+/// numpy.asarray and the float64 dtype, set by initConversions() when the
+/// module is imported (the GIL held; a function-local static would run
+/// Python under C++'s one-time lock) and kept to the process's exit.
+const py::object* g_asarray = nullptr;
+const py::object* g_float64 = nullptr;
+
+/// A Python error from a conversion: MemoryError, KeyboardInterrupt and the
+/// like pass through; only a value NumPy cannot read (TypeError, ValueError,
+/// OverflowError) is the caller's "not convertible".
+bool unreadable(const py::error_already_set& e) {
+  return e.matches(PyExc_TypeError) || e.matches(PyExc_ValueError) || e.matches(PyExc_OverflowError);
+}
+
+}  // namespace
+
+void initConversions() {
+  g_asarray = new py::object(py::module_::import("numpy").attr("asarray"));
+  g_float64 = new py::object(py::module_::import("numpy").attr("float64"));
+}
+
 DoubleArray toDoubleArray(const py::handle& obj, const char* name, const char* expected) {
   if (obj.is_none()) {
     throw py::type_error(std::string(name) + ": expected " + expected + ", got None");
@@ -14,29 +36,28 @@ DoubleArray toDoubleArray(const py::handle& obj, const char* name, const char* e
   // NumPy's own conversions, so that a MemoryError stays one (pybind11's
   // cast reported it as "not convertible"), and a look at the values' kind
   // first: a cast to float64 took complex numbers (dropping the imaginary
-  // part), dates and numeric strings.
-  static const py::object* const asarray =
-      new py::object(py::module_::import("numpy").attr("asarray"));  // kept to the process's exit
+  // part), dates and numeric strings. Object arrays (Fraction, Decimal,
+  // integers beyond 64 bits) are converted by float() per element.
   const auto notConvertible = [&](const std::string& why) {
     const std::string type = py::str(py::type::of(obj).attr("__name__"));
     return py::type_error(std::string(name) + ": expected " + expected + ", got a " + type + why);
   };
   py::object converted;
   try {
-    converted = (*asarray)(obj);
+    converted = py::isinstance<py::array>(obj) ? py::reinterpret_borrow<py::object>(obj) : (*g_asarray)(obj);
   } catch (py::error_already_set& e) {
-    if (e.matches(PyExc_MemoryError)) throw;
+    if (!unreadable(e)) throw;
     throw notConvertible(" that is not convertible to an array of float64");
   }
   const char kind = py::reinterpret_borrow<py::array>(converted).dtype().kind();
-  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f') {
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f' && kind != 'O') {
     const std::string dtype = py::str(py::reinterpret_borrow<py::array>(converted).dtype());
-    throw notConvertible(" of dtype " + dtype + " (real numbers only: no complex, date, string or object values)");
+    throw notConvertible(" of dtype " + dtype + " (real numbers only: no complex, date, string or bytes values)");
   }
   try {
-    converted = (*asarray)(converted, py::arg("dtype") = "float64", py::arg("order") = "C");
+    converted = (*g_asarray)(converted, py::arg("dtype") = *g_float64, py::arg("order") = "C");
   } catch (py::error_already_set& e) {
-    if (e.matches(PyExc_MemoryError)) throw;
+    if (!unreadable(e)) throw;
     throw notConvertible(" that is not convertible to an array of float64");
   }
   return py::reinterpret_borrow<DoubleArray>(converted);

@@ -21,6 +21,9 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 
 /// `obj` as a float64 array; TypeError naming `name` when it cannot be one.
 DoubleArray toDoubleArray(const py::handle& obj, const char* name, const char* expected);
+/// Looks up the NumPy functions toDoubleArray uses; called once when the
+/// module is imported.
+void initConversions();
 
 /// "(4, 4)" for an array of shape 4 x 4.
 std::string shapeText(const py::array& a);

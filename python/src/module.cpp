@@ -3,6 +3,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
+#include "convert.h"
 
 PYBIND11_MODULE(mddual, m) {
   namespace mp = mddual::python;
@@ -11,6 +12,7 @@ PYBIND11_MODULE(mddual, m) {
       "impact, intersection, penetration depth and width. Poses are 4x4 arrays (None for the identity); A is "
       "fixed, B moves.";
   m.attr("__version__") = MDDUAL_VERSION_STRING;
+  mp::initConversions();
   mp::bindErrors(m);
   mp::bindTypes(m);
   mp::bindQueries(m);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <sstream>
 
 #include "bindings.h"
 #include "convert.h"
@@ -72,7 +73,8 @@ class StateHolder {
   StateHolder& operator=(const StateHolder&) = delete;
   ob::State* get() const { return state_; }
   /// Sets the state from `d` numbers (an SE(3) state's quaternion made unit);
-  /// InvalidInputError naming `what` for a non-finite one or a zero quaternion.
+  /// InvalidInputError naming `what` for a non-finite one or a quaternion of
+  /// no rotation.
   void set(const double* values, int d, const std::string& what) {
     for (int i = 0; i < d; ++i) {
       if (!std::isfinite(values[i])) {
@@ -80,25 +82,31 @@ class StateHolder {
       }
     }
     std::vector<double> reals(values, values + d);
-    if (d == kSe3Dimension) normaliseQuaternion(&reals, what);
+    if (space_->getType() == ob::STATE_SPACE_SE3) normaliseQuaternion(&reals, what);
     space_->copyFromReals(state_, reals);
   }
 
  private:
   /// SE(3)'s quaternion (components 3 to 6) made unit: scaled by its largest
-  /// component first (its norm overflows at 1e200, underflows at 1e-300);
-  /// InvalidInputError when it is zero (no rotation: OMPL's SO(3) code aborted
-  /// on it in check_edges, pose() read it as the identity).
+  /// component first (its norm overflows at 1e200); InvalidInputError when
+  /// its norm is below kMinQuaternionNorm, the planning layer's "no
+  /// rotation" (a zero one aborted in OMPL's SO(3) code from check_edges and
+  /// was the identity in pose()).
   static void normaliseQuaternion(std::vector<double>* reals, const std::string& what) {
     Eigen::Map<Eigen::Vector4d> q(reals->data() + 3);
     const double largest = q.cwiseAbs().maxCoeff();
-    if (!(largest > 0.0)) {
-      throw InvalidInputError(what + ": the quaternion (components 3 to 6) is zero, not a rotation");
+    const double norm = largest > 0.0 ? largest * (q / largest).norm() : 0.0;
+    if (!(norm >= kMinQuaternionNorm)) {
+      std::ostringstream msg;
+      msg << what << ": the quaternion (components 3 to 6) has norm " << norm << ", below " << kMinQuaternionNorm
+          << ": not a rotation";
+      throw InvalidInputError(msg.str());
     }
     q /= largest;
     q.normalize();
   }
-  static constexpr int kSe3Dimension = 7;  ///< x, y, z, qx, qy, qz, qw
+  /// PlanningSpace's smallest quaternion norm read as a rotation (state_space.cpp).
+  static constexpr double kMinQuaternionNorm = 1e-12;
 
   ob::StateSpacePtr space_;
   ob::State* state_;

@@ -328,6 +328,20 @@ def test_complex_date_and_string_values_are_refused(unit_cube):
             mddual.mdd(unit_cube, None, unit_cube, translation(3.0), bad)
     with pytest.raises(TypeError, match="max_distance"):
         mddual.toi_batch(unit_cube, None, unit_cube, translation(3.0), [-1, 0, 0], max_distance="3")
+    # Object arrays are converted by float() per element (Fraction, Decimal,
+    # integers beyond 64 bits).
+    from fractions import Fraction
+    r = mddual.mdd(unit_cube, None, unit_cube, translation(3.0), np.array([Fraction(-1), 0, 2**70 * 0], dtype=object))
+    assert r.distance == pytest.approx(2.0, abs=TOL)
+
+
+def test_errors_other_than_a_bad_value_pass_through(unit_cube):
+    class Raising:
+        def __array__(self, dtype=None):
+            raise RuntimeError("from __array__")
+
+    with pytest.raises(RuntimeError, match="from __array__"):
+        mddual.mdd(unit_cube, None, unit_cube, translation(3.0), Raising())
 
 
 def test_a_method_name_is_shown_safely(unit_cube):

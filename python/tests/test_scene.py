@@ -247,21 +247,24 @@ def test_bad_inputs_raise(boxes, tmp_path):
         mddual.Scene.load(bad)
 
 
-def test_quaternions_are_made_unit_and_a_zero_one_is_refused(boxes):
+def test_quaternions_are_made_unit_and_one_of_no_rotation_is_refused(boxes):
     # A hostile-input hunt: a zero quaternion aborted the interpreter in
     # check_edges (OMPL's SO(3) assertion) and was the identity in pose();
-    # one of 1e200 gave a pose of infinities.
-    zero = [3, 0, 0, 0, 0, 0, 0]
-    for call in (lambda: boxes.check_edges([3, 0, 0, 0, 0, 0, 1], zero), lambda: boxes.pose(zero),
-                 lambda: boxes.is_valid(zero)):
-        with pytest.raises(mddual.InvalidInputError, match=r"the quaternion \(components 3 to 6\) is zero"):
-            call()
-    with pytest.raises(mddual.InvalidInputError, match=r"ends\[1\]: the quaternion"):
-        boxes.check_edges([3, 0, 0, 0, 0, 0, 1], [[3, 0, 0, 0, 0, 0, 1], zero])
+    # one of 1e200 gave a pose of infinities. Below a norm of 1e-12 (the
+    # planning layer's "no rotation") it is refused.
+    for q in ([0, 0, 0, 0], [0, 0, 0, 1e-300], [1e-13, 0, 0, 0]):
+        state = [3, 0, 0] + q
+        for call in (lambda: boxes.check_edges([3, 0, 0, 0, 0, 0, 1], state), lambda: boxes.pose(state),
+                     lambda: boxes.is_valid(state)):
+            with pytest.raises(mddual.InvalidInputError,
+                               match=r"the quaternion \(components 3 to 6\) has norm .*, below 1e-12: not a rotation"):
+                call()
+    with pytest.raises(mddual.InvalidInputError, match=r"ends\[1\]: the quaternion .* has norm 0,"):
+        boxes.check_edges([3, 0, 0, 0, 0, 0, 1], [[3, 0, 0, 0, 0, 0, 1], [3, 0, 0, 0, 0, 0, 0]])
     half_turn = np.diag([1.0, -1.0, -1.0])  # about x
-    for scale in (1e200, 2.0, 1e-300):
+    for scale in (1e200, 2.0, 1e-12):
         np.testing.assert_allclose(boxes.pose([1, 2, 3, scale, 0, 0, 0])[:3, :3], half_turn, atol=1e-15)
-    edge = boxes.check_edges([3, 0, 0, 0, 0, 0, 1], [3, 0, 0, 0, 0, 0, 1e-300])
+    edge = boxes.check_edges([3, 0, 0, 0, 0, 0, 1], [3, 0, 0, 0, 0, 0, 1e-6])
     assert not edge["collides"][0]
 
 

@@ -3,6 +3,7 @@
 // anything else; the message names what is wrong and where.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -47,14 +48,17 @@ class NumericalError : public Error {
 inline constexpr std::size_t kMaxQuotedChars = 200;
 
 /// A user's text as messages quote it: control bytes (NUL, newline, escape)
-/// shown as '?', and at most kMaxQuotedChars bytes followed by "... (N
-/// bytes)". Shared by the library, the planning layer and the CLI.
-inline std::string clipForMessage(const std::string& text) {
-  std::string out = text.substr(0, kMaxQuotedChars);
+/// shown as '?', and at most `max_bytes` bytes (kMaxQuotedChars unless
+/// given; cut at the start of a UTF-8 character) followed by "... (N bytes)".
+/// Shared by the library, the planning layer and the CLI.
+inline std::string clipForMessage(const std::string& text, std::size_t max_bytes = kMaxQuotedChars) {
+  std::size_t cut = std::min(text.size(), max_bytes);
+  while (cut > 0 && cut < text.size() && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  std::string out = text.substr(0, cut);
   for (char& c : out) {
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
   }
-  if (text.size() > kMaxQuotedChars) out += "... (" + std::to_string(text.size()) + " bytes)";
+  if (cut < text.size()) out += "... (" + std::to_string(text.size()) + " bytes)";
   return out;
 }
 

@@ -36,8 +36,9 @@ constexpr double kAreaTolerance = 1e-5;
 /// assimp stores vertex coordinates as 32-bit floats: a coordinate beyond
 /// this (FLT_MAX, about 3.4e38) in the file is read as infinity.
 constexpr double kFloatMax = static_cast<double>(std::numeric_limits<float>::max());
-/// floatRoundingWarning's threshold: a float spacing above 1e-4 of the mesh's
-/// size (a 1 m part rounded by more than 0.1 mm; the float spacing near 1e3 m).
+/// floatRoundingWarning's threshold: a rounding above 1e-4 of the mesh's size
+/// (a 1 m part rounded by more than 0.1 mm: coordinates beyond about 1,700 m;
+/// a 100 m building beyond about 170 km).
 constexpr double kFloatRoundingWarnRel = 1e-4;
 /// Before it builds the hull, the convexity test looks for a witness of
 /// non-convexity (a triangle with mesh points beyond both sides of its plane)
@@ -501,12 +502,14 @@ std::string floatRoundingWarning(const MeshData& data, const std::string& file) 
   }
   const double size = (hi - lo).norm();
   const double largest = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-  const double spacing = largest * static_cast<double>(std::numeric_limits<float>::epsilon());
-  if (!(spacing > kFloatRoundingWarnRel * size)) return "";
+  // Half the spacing of floats at the largest coordinate (FLT_EPSILON is the
+  // spacing at 1; it is at most largest * FLT_EPSILON at `largest`).
+  const double rounding = 0.5 * largest * static_cast<double>(std::numeric_limits<float>::epsilon());
+  if (!(rounding > kFloatRoundingWarnRel * size)) return "";
   return file + ": coordinates up to " + shortNumber(largest) + " in a mesh " + shortNumber(size) +
-         " across: the mesh reader (assimp) keeps 32-bit floats, which round them by up to " + shortNumber(spacing) +
-         " (" + shortNumber(100.0 * spacing / size) + "% of its size); keep the mesh near its own origin and place " +
-         "it with the URDF's or the cfg's pose";
+         " across: the mesh reader (assimp) keeps 32-bit floats, which round them by up to " + shortNumber(rounding) +
+         " (" + shortNumber(100.0 * rounding / size) + "% of its size); keep the mesh near its own origin and " +
+         "place it with the URDF's or the cfg's pose";
 }
 
 std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const Eigen::Vector3d& scale,
@@ -520,8 +523,16 @@ std::vector<Piece> meshPiecesWithOrigin(const std::filesystem::path& file, const
   const MeshData data = readMesh(file);
   MeshInfo local;
   MeshInfo& out = info != nullptr ? *info : local;
-  std::vector<Piece> pieces = meshDataPieces(data, file, scale, X_OM, options, origin_prefix, &out);
+  // The rounding is said whether the load succeeds (a warning) or fails (with
+  // the error: a cube at 1e8 fails as "all triangles are degenerate").
   const std::string rounded = floatRoundingWarning(data, display(file));
+  std::vector<Piece> pieces;
+  try {
+    pieces = meshDataPieces(data, file, scale, X_OM, options, origin_prefix, &out);
+  } catch (const SceneError& e) {
+    if (rounded.empty()) throw;
+    throw SceneError(std::string(e.what()) + " (" + rounded + ")");
+  }
   if (!rounded.empty()) out.warnings.push_back(rounded);
   return pieces;
 }

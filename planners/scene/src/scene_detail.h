@@ -14,9 +14,10 @@
 
 namespace mddual::scene::detail {
 
-/// "'text'", as clipForMessage shows it.
+/// "'text'", control bytes shown as '?' (clipForMessage, not cut: it also
+/// quotes the file names in piece names).
 inline std::string quote(const std::string& text) {
-  return "'" + clipForMessage(text) + "'";
+  return "'" + clipForMessage(text, std::string::npos) + "'";
 }
 
 /// The path as the user gave it, for messages.

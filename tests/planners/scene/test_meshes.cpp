@@ -659,9 +659,13 @@ TEST(MeshErrors, AMeshFarFromItsOriginIsWarnedOfFloatRounding) {
   meshPieces(cubeAt(1e5), kOnes, kIdentity, {}, &info);
   EXPECT_TRUE(mentions(info.warnings,
                        "cube100000.stl: coordinates up to 1e+05 in a mesh 1.73 across: the mesh "
-                       "reader (assimp) keeps 32-bit floats, which round them by up to 0.0119 (0.688% "
-                       "of its size)"))
+                       "reader (assimp) keeps 32-bit floats, which round them by up to 0.00596 "
+                       "(0.344% of its size)"))
       << (info.warnings.empty() ? "(no warning)" : info.warnings[0]);
+  // A load that fails says it too (the cube's corners all round together).
+  const auto far = dir.write("far.stl", asciiStl(boxTriangles({1e8, 1e8, 1e8}, {1e8 + 1, 1e8 + 1, 1e8 + 1})));
+  expectSceneError([&] { meshPieces(far, kOnes, kIdentity, {}, nullptr); },
+                   {"far.stl: ", "(", "far.stl: coordinates up to 1e+08 in a mesh ", "32-bit floats"});
 }
 
 TEST(MeshErrors, DeeplyNestedColladaIsRefusedBeforeParsing) {

@@ -363,13 +363,11 @@ TEST(ProblemConfigErrors, NumberWithTrailingText) {
 TEST(ProblemConfigErrors, NonFiniteNumber) {
   expectPlanarError("goal.x = 40", "goal.x = inf", {"maze.cfg:9: goal.x: 'inf' is not a number"});
 }
-TEST(ProblemConfigErrors, ControlBytesAndHugeValuesAreShownSafely) {
+TEST(ProblemConfigErrors, ControlBytesAreShownSafely) {
   // A hostile-input hunt: NUL and escape bytes of the input went raw into
-  // messages (a terminal ran the escape). Shown as '?', cut at 200 bytes.
+  // messages (a terminal ran the escape). Shown as '?'.
   expectPlanarError("goal.x = 40", std::string("goal.x = 4\x1b[31m0"),
                     {"maze.cfg:9: goal.x: '4?[31m0' is not a number"});
-  expectPlanarError("goal.x = 40", "goal.x = " + std::string(300, '7') + "x",
-                    {"goal.x: '" + std::string(200, '7') + "... (301 bytes)' is not a number"});
 }
 TEST(ProblemConfigErrors, UnknownSection) {
   expectPlanarError("[benchmark]", "[benchmarks]", {"maze.cfg:18: unknown section [benchmarks]"});

@@ -473,8 +473,10 @@ EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const
       // SO2StateSpace::interpolate: the shorter way, |diff| <= pi going forward.
       const double yaw1 = poseState(s1)->as<ob::SE2StateSpace::StateType>()->getYaw();
       const double yaw2 = poseState(s2)->as<ob::SE2StateSpace::StateType>()->getYaw();
-      double diff = yaw2 - yaw1;
-      if (std::abs(diff) > kPi) diff = diff > 0.0 ? diff - 2.0 * kPi : diff + 2.0 * kPi;
+      // std::remainder: the same as one turn added or taken for yaws within
+      // [-pi, pi] (ties at +-pi kept), and within [-pi, pi] for any other (a
+      // yaw of 1e300 gave an angle of 1e300, and a search without end).
+      const double diff = std::remainder(yaw2 - yaw1, 2.0 * kPi);
       if (std::abs(diff) >= kMinRotationAngle) {
         m.angle = std::abs(diff);
         m.axis_R = Eigen::Vector3d(0.0, 0.0, diff > 0.0 ? 1.0 : -1.0);
@@ -485,6 +487,10 @@ EdgeMotion PlanningSpace::motion(const ob::State* s1, const ob::State* s2) const
     case SpaceKind::kSE3: {
       const auto& r1 = poseState(s1)->as<ob::SE3StateSpace::StateType>()->rotation();
       const auto& r2 = poseState(s2)->as<ob::SE3StateSpace::StateType>()->rotation();
+      // A zero (or non-finite) quaternion is no rotation: OMPL's SO(3)
+      // interpolate, asked below near a half-turn tie, aborts on it.
+      unitQuaternion(Eigen::Quaterniond(r1.w, r1.x, r1.y, r1.z), "motion: s1's quaternion");
+      unitQuaternion(Eigen::Quaterniond(r2.w, r2.x, r2.y, r2.z), "motion: s2's quaternion");
       m.q_start = toEigen(r1);
       const double dq = omplQuaternionDot(r1, r2);
       // SO3StateSpace's arcLength(): 0 when |dq| > 1 - 1e-9, then interpolate() copies q1.

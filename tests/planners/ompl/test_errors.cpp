@@ -222,6 +222,42 @@ TEST(Errors, LastValidTowardARotationOutOfBoundsDoesNotAbort) {
   }
 }
 
+// An API hunt: a zero quaternion aborted the process in OMPL's SO(3)
+// interpolate (checkMotion, edgeContact), and a yaw of 1e17 or more made
+// checkMotion with lastValid search for minutes. The validator answers at
+// once (invalid, lastValid s1); PlanningSpace::motion refuses the zero
+// quaternion and wraps any yaw difference into [-pi, pi].
+TEST(Errors, RotationsThatAreNoStateAnswerAtOnce) {
+  const examples::ExampleScene scene = examples::blobScene(testing::seed());
+  for (SpaceKind kind : {SpaceKind::kSE2, SpaceKind::kSE3}) {
+    const testing::Fixture fx = testing::makeFixture(scene, kind);
+    testing::Rng rng(testing::seed() * 5);
+    ob::ScopedState<> s1(fx.space->stateSpace()), s2(fx.space->stateSpace()), last(fx.space->stateSpace());
+    testing::randomValidState(*fx.si, *fx.space, rng, s1.get());
+    fx.si->copyState(s2.get(), s1.get());
+    if (kind == SpaceKind::kSE2) {
+      s2->as<ob::SE2StateSpace::StateType>()->setYaw(1e300);
+    } else {
+      auto& q = s2->as<ob::SE3StateSpace::StateType>()->rotation();
+      q.x = 0.0, q.y = 0.0, q.z = 0.0, q.w = 0.0;
+    }
+    EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get())) << toString(kind);
+    std::pair<ob::State*, double> last_valid(last.get(), -1.0);
+    EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), last_valid)) << toString(kind);
+    EXPECT_EQ(last_valid.second, 0.0) << toString(kind);
+    EXPECT_TRUE(fx.si->equalStates(last.get(), s1.get())) << toString(kind);
+    const EdgeContact e = fx.mdd_motion->firstInvalid(s1.get(), s2.get(), EdgeQuery::kFirstContact);
+    EXPECT_TRUE(e.collides);
+    EXPECT_EQ(e.fraction, 0.0);
+    EXPECT_FALSE(e.exact);
+    if (kind == SpaceKind::kSE3) {
+      expectError([&] { fx.space->motion(s1.get(), s2.get()); }, "motion: s2's quaternion is zero or not finite");
+    } else {
+      EXPECT_LE(fx.space->motion(s1.get(), s2.get()).angle, M_PI);
+    }
+  }
+}
+
 TEST(Errors, ExampleScenes) {
   expectError([] { examples::thinWallScene(0.0); }, "thickness");
   const std::vector<Eigen::Vector2d> clockwise = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};

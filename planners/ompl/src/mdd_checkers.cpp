@@ -53,7 +53,18 @@ MddStateValidityChecker::MddStateValidityChecker(const ob::SpaceInformationPtr& 
   specs_.clearanceComputationType = ob::StateValidityCheckerSpecs::EXACT;
 }
 
+namespace {
+
+/// Throws InvalidInputError "<what> is null" for a null state (OMPL's own
+/// checkers dereference it).
+void requireState(const ob::State* state, const char* what) {
+  if (state == nullptr) throw InvalidInputError(std::string(what) + " is null");
+}
+
+}  // namespace
+
 bool MddStateValidityChecker::isValid(const ob::State* state) const {
+  requireState(state, "MddStateValidityChecker::isValid: the state");
   CheckerCounters::Timer timer(counters_);
   counters_.addStateCheck();
   if (!si_->satisfiesBounds(state)) return false;
@@ -64,6 +75,7 @@ bool MddStateValidityChecker::isValid(const ob::State* state) const {
 }
 
 double MddStateValidityChecker::clearance(const ob::State* state) const {
+  requireState(state, "MddStateValidityChecker::clearance: the state");
   CheckerCounters::Timer timer(counters_);
   counters_.addStateCheck();
   const SceneDistance d = sceneDistance(*scene_, space_->pose(state));
@@ -90,6 +102,8 @@ void MddMotionValidator::countOmpl(bool valid) const {
 }
 
 EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s2, EdgeQuery query) const {
+  requireState(s1, "MddMotionValidator: s1");
+  requireState(s2, "MddMotionValidator: s2");
   const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
   if (!si_->satisfiesBounds(s1)) {
@@ -169,6 +183,8 @@ void MddMotionValidator::setDiscardedLastValidFraction(double fraction) {
 }
 
 bool MddMotionValidator::blockedEarly(const ob::State* s1, const ob::State* s2) const {
+  requireState(s1, "MddMotionValidator: s1");
+  requireState(s2, "MddMotionValidator: s2");
   // A rotating edge only (a translation edge's exact sweep costs about what
   // the state test costs), from a start within the bounds (a start outside
   // them takes evaluate's (s1, 0) path; an edge that leaves them before the

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "constants.h"
@@ -300,12 +301,21 @@ double MddScene::setMargin(int set) const {
 }
 
 int MddScene::subEdgeCount(double angle) const {
+  if (!(angle >= 0.0) || !std::isfinite(angle)) {
+    throw InvalidInputError("MddScene::subEdgeCount: the angle " + std::to_string(angle) + " must be finite and >= 0");
+  }
   const double n = std::ceil(angle * robot_->radius() / (2.0 * delta_) * (1.0 + kSubEdgeSafety));
-  return std::max(1, static_cast<int>(n));
+  // At most INT_MAX (an angle of 1e300 overflowed the cast).
+  return n >= static_cast<double>(std::numeric_limits<int>::max()) ? std::numeric_limits<int>::max()
+                                                                   : std::max(1, static_cast<int>(n));
 }
 
 const scene::Piece& MddScene::enlargedPiece(int level, int i) const {
-  const EnlargedLevel& e = enlarged_.at(static_cast<std::size_t>(level));
+  if (level < 0 || static_cast<std::size_t>(level) >= enlarged_.size()) {
+    throw InvalidInputError("MddScene: enlargement level " + std::to_string(level) + " does not exist (0 to " +
+                            std::to_string(enlarged_.size() - 1) + ")");
+  }
+  const EnlargedLevel& e = enlarged_[static_cast<std::size_t>(level)];
   const std::size_t k = static_cast<std::size_t>(i);
   if (i < 0 || k >= robot_->pieces().size()) {
     throw InvalidInputError("MddScene: robot piece " + std::to_string(i) + " does not exist");
@@ -316,8 +326,20 @@ const scene::Piece& MddScene::enlargedPiece(int level, int i) const {
   return *e.pieces[k];
 }
 
+void MddScene::requireSet(int set, const char* who) const {
+  if (set < 0 || set > refinementLevels() + 1) {
+    throw InvalidInputError(std::string(who) + ": piece set " + std::to_string(set) +
+                            " does not exist (0: the robot's pieces, 1 to " + std::to_string(refinementLevels() + 1) +
+                            ": its enlargement levels)");
+  }
+}
+
 const scene::Piece& MddScene::setPiece(int set, int i) const {
-  return set == 0 ? robot_->pieces().at(static_cast<std::size_t>(i)) : enlargedPiece(set - 1, i);
+  if (set != 0) return enlargedPiece(set - 1, i);  // says which level or piece does not exist
+  if (i < 0 || static_cast<std::size_t>(i) >= robot_->pieces().size()) {
+    throw InvalidInputError("MddScene: robot piece " + std::to_string(i) + " does not exist");
+  }
+  return robot_->pieces()[static_cast<std::size_t>(i)];
 }
 
 std::shared_ptr<MddScene::WarmTable> MddScene::warmTable() const {
@@ -349,6 +371,7 @@ bool MddScene::collides(const Eigen::Isometry3d& X_WR, int* pair_queries, PieceC
 bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const {
   // A NaN pose fails every volume test and would reach no pair: "free".
   requireFinitePose(X_WR, "the robot pose X_WR", "MddScene::collides");
+  requireSet(set, "MddScene::collidesSet");
   const std::vector<scene::Piece>& world = world_->pieces();
   // Fetched at the first pair that reaches the core and held for the rest of
   // the query: most states of a sparse scene reach none.
@@ -412,6 +435,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
                                bool first_contact, double stop_within) const {
   // A NaN pose fails every volume test and would reach no pair: "free".
   requireFinitePose(X_WR, "the robot pose X_WR", "MddScene::sweep");
+  requireSet(set, "MddScene::sweepSet");
   SweepResult result;
   // Divided by its largest coordinate first: |v| under- or overflows for
   // directions such as [1e-200, 0, 0] (the core's rule, pair.cpp).
@@ -509,6 +533,9 @@ EdgeContact MddScene::checkEdge(const EdgeMotion& motion, EdgeQuery query, doubl
                             std::to_string(fraction_tolerance) + ")");
   }
   checkMotionArgument(motion);
+  if (query != EdgeQuery::kValidity && query != EdgeQuery::kFirstContact && query != EdgeQuery::kLastValid) {
+    throw InvalidInputError("MddScene::checkEdge: unknown query " + std::to_string(static_cast<int>(query)));
+  }
   const bool first_contact = query != EdgeQuery::kValidity;
   EdgeContact out;
   // Validity: a few states first (the end, the middle; on rotating edges

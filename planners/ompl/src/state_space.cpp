@@ -364,6 +364,9 @@ ob::State* PlanningSpace::poseState(ob::State* state) const {
 
 PlanningSpacePtr PlanningSpace::make(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z,
                                      const Eigen::Quaterniond& q_WR) {
+  if (kind != SpaceKind::kSE2 && kind != SpaceKind::kSE3 && kind != SpaceKind::kR2 && kind != SpaceKind::kR3) {
+    throw InvalidInputError("PlanningSpace::make: unknown space kind " + std::to_string(static_cast<int>(kind)));
+  }
   return PlanningSpacePtr(new PlanningSpace(kind, bounds, z, q_WR));
 }
 PlanningSpacePtr PlanningSpace::se2(const Eigen::AlignedBox3d& bounds) {

@@ -258,6 +258,33 @@ TEST(Errors, RotationsThatAreNoStateAnswerAtOnce) {
   }
 }
 
+// An API hunt's misuses: a null state (OMPL's own checkers dereference it),
+// an unknown space kind or query, a piece set, level or piece that does not
+// exist (std::out_of_range before), a NaN or negative angle.
+TEST(Errors, MisusedApiCallsAreNamed) {
+  const examples::ExampleScene scene = examples::blobScene(testing::seed());
+  const testing::Fixture fx = testing::makeFixture(scene, SpaceKind::kSE3);
+  ob::ScopedState<> s(fx.space->stateSpace());
+  testing::Rng rng(testing::seed() * 7);
+  testing::randomValidState(*fx.si, *fx.space, rng, s.get());
+  expectError([&] { fx.mdd_checker->isValid(nullptr); }, "MddStateValidityChecker::isValid: the state is null");
+  expectError([&] { fx.mdd_checker->clearance(nullptr); }, "the state is null");
+  expectError([&] { fx.mdd_motion->checkMotion(s.get(), nullptr); }, "MddMotionValidator: s2 is null");
+  std::pair<ob::State*, double> last(nullptr, 0.0);
+  expectError([&] { fx.mdd_motion->checkMotion(nullptr, s.get(), last); }, "MddMotionValidator: s1 is null");
+  expectError([&] { PlanningSpace::make(static_cast<SpaceKind>(7), fx.space->bounds()); }, "unknown space kind 7");
+  const MddScene& mdd = *fx.mdd;
+  const EdgeMotion motion = fx.space->motion(s.get(), s.get());
+  expectError([&] { mdd.checkEdge(motion, static_cast<EdgeQuery>(9)); }, "unknown query 9");
+  expectError([&] { mdd.setPiece(0, -1); }, "robot piece -1 does not exist");
+  expectError([&] { mdd.enlargedPiece(99, 0); }, "enlargement level 99 does not exist");
+  expectError([&] { mdd.sweepSet(9, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), 1.0, true); },
+              "piece set 9 does not exist");
+  expectError([&] { mdd.subEdgeCount(kNaN); }, "must be finite and >= 0");
+  expectError([&] { mdd.subEdgeCount(-1.0); }, "must be finite and >= 0");
+  EXPECT_EQ(mdd.subEdgeCount(1e300), std::numeric_limits<int>::max());
+}
+
 TEST(Errors, ExampleScenes) {
   expectError([] { examples::thinWallScene(0.0); }, "thickness");
   const std::vector<Eigen::Vector2d> clockwise = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};

@@ -455,6 +455,9 @@ class MddScene {
   /// Whether the true robot collides at one of the edge's probe states: the
   /// end and the middle; on a rotating edge also the quarters.
   bool probeStatesCollide(const EdgeMotion& motion, EdgeContact* out) const;
+  /// Throws InvalidInputError naming `who` unless `set` is a piece set
+  /// (0 to refinementLevels() + 1).
+  void requireSet(int set, const char* who) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
   double setMargin(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;

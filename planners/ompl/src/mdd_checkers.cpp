@@ -112,13 +112,15 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
     out.fraction = 0.0;
     return out;
   }
-  if (!space_->rotationsWithinBounds(s2)) {
-    // s2's rotation is no state of the space (a yaw beyond pi, a quaternion
-    // off unit norm or zero): the edge is invalid at its end, as OMPL's
-    // discrete check (which tests s2 first) says, and the motion OMPL would
-    // interpolate to it is undefined (its SO(3) code aborted on a zero
-    // quaternion, and a yaw of 1e17 made the search run for minutes; an API
-    // hunt): no search, a first contact bound of 0 (lastValid keeps s1).
+  if (!space_->rotationsWithinBounds(s2) || !space_->pose(s2).translation().allFinite()) {
+    // s2 is no state of the space (a yaw beyond pi, a quaternion off unit
+    // norm or zero, a position of infinity or NaN): the edge is invalid at
+    // its end, as OMPL's discrete check (which tests s2 first) says, and the
+    // motion OMPL would interpolate to it is undefined (its SO(3) code
+    // aborted on a zero quaternion, a yaw of 1e17 made the search run for
+    // minutes, and an infinite position answered false without lastValid and
+    // threw with it; an API hunt): no search, a first contact bound of 0
+    // (lastValid keeps s1).
     out.collides = true;
     out.exact = false;
     out.fraction = first_contact ? 0.0 : 1.0;
@@ -189,7 +191,9 @@ bool MddMotionValidator::blockedEarly(const ob::State* s1, const ob::State* s2) 
   // the state test costs), from a start within the bounds (a start outside
   // them takes evaluate's (s1, 0) path; an edge that leaves them before the
   // state tested has its lastValid at most the exit).
-  if (!si_->satisfiesBounds(s1) || !space_->rotationsWithinBounds(s2)) return false;  // evaluate's early answers
+  if (!si_->satisfiesBounds(s1) || !space_->rotationsWithinBounds(s2) || !space_->pose(s2).translation().allFinite()) {
+    return false;  // evaluate's early answers
+  }
   const EdgeMotion motion = space_->motion(s1, s2);
   if (!motion.rotates()) return false;
   // The state tested: the planner's discarded fraction, or else one step of

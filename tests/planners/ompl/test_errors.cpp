@@ -255,6 +255,19 @@ TEST(Errors, RotationsThatAreNoStateAnswerAtOnce) {
     } else {
       EXPECT_LE(fx.space->motion(s1.get(), s2.get()).angle, M_PI);
     }
+    // An infinite position: both overloads say invalid (the one with
+    // lastValid threw "positions must be finite").
+    fx.si->copyState(s2.get(), s1.get());
+    const double inf = std::numeric_limits<double>::infinity();
+    if (kind == SpaceKind::kSE2) {
+      s2->as<ob::SE2StateSpace::StateType>()->setX(inf);
+    } else {
+      s2->as<ob::SE3StateSpace::StateType>()->setX(inf);
+    }
+    EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get())) << toString(kind);
+    last_valid = {last.get(), -1.0};
+    EXPECT_FALSE(fx.mdd_motion->checkMotion(s1.get(), s2.get(), last_valid)) << toString(kind);
+    EXPECT_EQ(last_valid.second, 0.0) << toString(kind);
   }
 }
 

@@ -89,24 +89,22 @@ class StateHolder {
  private:
   /// SE(3)'s quaternion (components 3 to 6) made unit: scaled by its largest
   /// component first (its norm overflows at 1e200); InvalidInputError when
-  /// its norm is below kMinQuaternionNorm, the planning layer's "no
+  /// its norm is below mp::kMinQuaternionNorm, the planning layer's "no
   /// rotation" (a zero one aborted in OMPL's SO(3) code from check_edges and
   /// was the identity in pose()).
   static void normaliseQuaternion(std::vector<double>* reals, const std::string& what) {
     Eigen::Map<Eigen::Vector4d> q(reals->data() + 3);
     const double largest = q.cwiseAbs().maxCoeff();
     const double norm = largest > 0.0 ? largest * (q / largest).norm() : 0.0;
-    if (!(norm >= kMinQuaternionNorm)) {
+    if (!(norm >= mp::kMinQuaternionNorm)) {
       std::ostringstream msg;
-      msg << what << ": the quaternion (components 3 to 6) has norm " << norm << ", below " << kMinQuaternionNorm
+      msg << what << ": the quaternion (components 3 to 6) has norm " << norm << ", below " << mp::kMinQuaternionNorm
           << ": not a rotation";
       throw InvalidInputError(msg.str());
     }
     q /= largest;
     q.normalize();
   }
-  /// PlanningSpace's smallest quaternion norm read as a rotation (state_space.cpp).
-  static constexpr double kMinQuaternionNorm = 1e-12;
 
   ob::StateSpacePtr space_;
   ob::State* state_;

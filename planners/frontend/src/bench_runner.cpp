@@ -342,8 +342,13 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
     if (ci == 0) {
       // The cfg's planners that --planners leaves out are checked too, set up
       // on a copy of the problem (a set-up may add an objective to it): a bad
-      // value in the cfg is refused whichever planners run (it passed).
+      // value in the cfg is refused whichever planners run (it passed). The
+      // ones that run are checked below and set up by the benchmark.
       for (const scene::PlannerSpec& listed : problem.config.planners) {
+        const bool selected = std::any_of(specs.begin(), specs.end(), [&](const scene::PlannerSpec& spec) {
+          return spec.line == listed.line && spec == listed;
+        });
+        if (selected) continue;
         double discarded = 0.0;
         const ob::PlannerPtr p = checkedPlanner(setup, listed, &discarded);
         p->setProblemDefinition(setup.simpleSetup().getProblemDefinition()->clone());

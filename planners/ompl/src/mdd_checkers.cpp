@@ -55,6 +55,13 @@ MddStateValidityChecker::MddStateValidityChecker(const ob::SpaceInformationPtr& 
 
 namespace {
 
+/// Whether `state` is a state of the space an edge can go to: rotations
+/// within their bounds (a yaw within [-pi, pi], unit quaternions) and a finite
+/// position (see MddMotionValidator::evaluate).
+bool definedState(const PlanningSpace& space, const ob::State* state) {
+  return space.rotationsWithinBounds(state) && space.pose(state).translation().allFinite();
+}
+
 /// Throws InvalidInputError "<what> is null" for a null state (OMPL's own
 /// checkers dereference it).
 void requireState(const ob::State* state, const char* what) {
@@ -112,7 +119,7 @@ EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s
     out.fraction = 0.0;
     return out;
   }
-  if (!space_->rotationsWithinBounds(s2) || !space_->pose(s2).translation().allFinite()) {
+  if (!definedState(*space_, s2)) {
     // s2 is no state of the space (a yaw beyond pi, a quaternion off unit
     // norm or zero, a position of infinity or NaN): the edge is invalid at
     // its end, as OMPL's discrete check (which tests s2 first) says, and the
@@ -191,9 +198,7 @@ bool MddMotionValidator::blockedEarly(const ob::State* s1, const ob::State* s2) 
   // the state test costs), from a start within the bounds (a start outside
   // them takes evaluate's (s1, 0) path; an edge that leaves them before the
   // state tested has its lastValid at most the exit).
-  if (!si_->satisfiesBounds(s1) || !space_->rotationsWithinBounds(s2) || !space_->pose(s2).translation().allFinite()) {
-    return false;  // evaluate's early answers
-  }
+  if (!si_->satisfiesBounds(s1) || !definedState(*space_, s2)) return false;  // evaluate's early answers
   const EdgeMotion motion = space_->motion(s1, s2);
   if (!motion.rotates()) return false;
   // The state tested: the planner's discarded fraction, or else one step of

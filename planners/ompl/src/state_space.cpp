@@ -213,7 +213,7 @@ std::pair<int, SpaceKind> locatePosePart(const ob::StateSpace& space, const std:
 
 Eigen::Quaterniond unitQuaternion(const Eigen::Quaterniond& q, const char* what) {
   const double n = q.norm();
-  if (!std::isfinite(n) || n < 1e-12) {
+  if (!std::isfinite(n) || n < kMinQuaternionNorm) {
     throw InvalidInputError(std::string("PlanningSpace: ") + what + " is zero or not finite");
   }
   return Eigen::Quaterniond(q.coeffs() / n);

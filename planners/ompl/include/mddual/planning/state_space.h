@@ -67,6 +67,9 @@ const char* toString(SpaceKind kind);
 
 /// Rotations smaller than this (radians) along an SE(2) edge count as none.
 inline constexpr double kMinRotationAngle = 1e-12;
+/// A quaternion of norm below this is no rotation (PlanningSpace refuses it
+/// as zero; the Python module's states too).
+inline constexpr double kMinQuaternionNorm = 1e-12;
 
 /// The robot frame's motion along an edge s1 -> s2 (t in [0, 1]):
 ///   p(t) = p_start + t (p_end - p_start),

@@ -22,6 +22,10 @@ ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planne
   specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
   specs_.directed = true;
   Planner::declareParam<double>("range", this, &ExactRRTConnect::setRange, &ExactRRTConnect::getRange, "0.:1.:10000.");
+  Planner::declareParam<double>("blocked_range", this, &ExactRRTConnect::setBlockedRange,
+                                &ExactRRTConnect::getBlockedRange, "0.:1.:10000.");
+  Planner::declareParam<bool>("whole_edge_last_valid", this, &ExactRRTConnect::setWholeEdgeLastValid,
+                              &ExactRRTConnect::getWholeEdgeLastValid, "0,1");
   Planner::declareParam<double>("min_progress", this, &ExactRRTConnect::setMinProgress,
                                 &ExactRRTConnect::getMinProgress, "0.:0.1:100.");
   Planner::declareParam<double>("probe_steps", this, &ExactRRTConnect::setProbeSteps, &ExactRRTConnect::getProbeSteps,
@@ -59,6 +63,14 @@ void ExactRRTConnect::setRange(double range) {
   range_ = range;
 }
 
+void ExactRRTConnect::setBlockedRange(double range) {
+  if (!(range >= 0.0) || !std::isfinite(range)) {
+    throw InvalidInputError(
+        "ExactRRTConnect: blocked_range must be a finite distance >= 0 (0: OMPL's default range), got " + text(range));
+  }
+  blocked_range_ = range;
+}
+
 void ExactRRTConnect::setMinProgress(double steps) {
   if (!(steps >= 0.0) || !std::isfinite(steps)) {
     throw InvalidInputError("ExactRRTConnect: min_progress must be a finite number of steps >= 0, got " + text(steps));
@@ -81,6 +93,10 @@ ExactRRTConnect::~ExactRRTConnect() {
 
 void ExactRRTConnect::setup() {
   Planner::setup();
+  // 0: OMPL's default planner range (0.2 of the space's maximum extent),
+  // configured as OMPL's RRT-Connect configures its range.
+  ompl::tools::SelfConfig config(si_, getName());
+  config.configurePlannerRange(blocked_range_);
   auto make = [this]() {
     Tree tree(ompl::tools::SelfConfig::getDefaultNearestNeighbors<Motion*>(this));
     tree->setDistanceFunction([this](const Motion* a, const Motion* b) { return distance(a, b); });
@@ -147,37 +163,64 @@ bool ExactRRTConnect::rotationInPlace(const ob::State* from, const ob::State* to
   return false;
 }
 
-ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, const ob::State* to, bool* reached) {
-  *reached = false;
+bool ExactRRTConnect::isProgress(double fraction, const ob::State* from, const ob::State* to) const {
+  // Counted in steps from the fraction: OMPL's discrete validator keeps whole
+  // steps (j / steps), and a gain of exactly min_progress steps must not be
+  // lost to the round-off of a distance comparison (kStepRoundoff).
+  const double gain = fraction * std::max(1u, si_->getStateSpace()->validSegmentCount(from, to));
+  return gain >= min_progress_ * (1.0 - kStepRoundoff) && gain >= kMinGainSteps;
+}
+
+ExactRRTConnect::Motion* ExactRRTConnect::upToLastValid(const Tree& tree, Motion* from, const ob::State* to,
+                                                        bool* free) {
   ob::State* last = si_->allocState();
   std::pair<ob::State*, double> last_valid(last, 0.0);
   Motion* added = nullptr;
-  const unsigned steps = std::max(1u, si_->getStateSpace()->validSegmentCount(from->state, to));
+  *free = si_->checkMotion(from->state, to, last_valid);
+  if (*free) {
+    added = addMotion(tree, from, to);
+  } else if (last_valid.second > 0.0 && isProgress(last_valid.second, from->state, to)) {
+    added = addMotion(tree, from, last);
+  }
+  si_->freeState(last);
+  return added;
+}
+
+ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, const ob::State* to, bool* reached) {
+  *reached = false;
+  const ob::StateSpacePtr& space = si_->getStateSpace();
+  ob::State* work = si_->allocState();
+  Motion* added = nullptr;
   // 1. The probe (edges longer than probe_steps steps): the state
   //    probe_steps steps in. When it collides the edge is blocked within
   //    them and adds nothing, without its motion check (the header says why).
+  const unsigned steps = std::max(1u, space->validSegmentCount(from->state, to));
   if (probe_steps_ > 0.0 && probe_steps_ < steps) {
-    si_->getStateSpace()->interpolate(from->state, to, probe_steps_ / steps, last);
-    if (!si_->isValid(last)) {
-      si_->freeState(last);
+    space->interpolate(from->state, to, probe_steps_ / steps, work);
+    if (!si_->isValid(work)) {
+      si_->freeState(work);
       return nullptr;
     }
   }
-  // 2. The motion check; a blocked edge is kept up to lastValid when that is
-  //    progress.
-  if (si_->checkMotion(from->state, to, last_valid)) {
+  // 2. whole_edge_last_valid: the whole edge, kept up to lastValid when
+  //    blocked and that is progress (one motion check).
+  if (whole_edge_last_valid_) {
+    added = upToLastValid(tree, from, to, reached);
+  } else if (si_->checkMotion(from->state, to)) {
+    // 3. Otherwise the whole edge: one validity check.
     added = addMotion(tree, from, to);
     *reached = true;
-  } else if (last_valid.second > 0.0) {
-    // Kept only when it is progress: at least min_progress of this edge's
-    // validity-checking steps (the header says why). Counted in steps from
-    // the fraction: OMPL's discrete validator keeps whole steps (j / steps),
-    // and a gain of exactly min_progress steps must not be lost to the
-    // round-off of a distance comparison (kStepRoundoff).
-    const double gain = last_valid.second * steps;
-    if (gain >= min_progress_ * (1.0 - kStepRoundoff) && gain >= kMinGainSteps) added = addMotion(tree, from, last);
+  } else if (const double d = si_->distance(from->state, to); d > blocked_range_) {
+    // 4. Blocked, and longer than blocked_range: RRT-Connect's step of
+    //    blocked_range toward `to` (a prefix of the edge under OMPL's
+    //    interpolation), kept whole when free, else up to lastValid when that
+    //    is progress (min_progress of the step's own steps). A blocked edge
+    //    no longer than blocked_range adds nothing (the header says why).
+    space->interpolate(from->state, to, blocked_range_ / d, work);
+    bool step_free = false;
+    added = upToLastValid(tree, from, work, &step_free);
   }
-  si_->freeState(last);
+  si_->freeState(work);
   return added;
 }
 

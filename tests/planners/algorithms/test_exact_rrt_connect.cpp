@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE2StateSpace.h>
@@ -71,6 +73,18 @@ TEST(ExactRRTConnect, SolvesThroughTheGapWithAValidPath) {
   EXPECT_NEAR(last->values[0], 9.0, 1e-12);
 }
 
+/// The planner's tree states within 0.01 of makeSetup's wall faces.
+int statesAtTheWall(const ExactRRTConnect& planner, const ob::SpaceInformationPtr& si) {
+  ob::PlannerData data(si);
+  planner.getPlannerData(data);
+  int at_wall = 0;
+  for (unsigned i = 0; i < data.numVertices(); ++i) {
+    const double x = data.getVertex(i).getState()->as<ob::RealVectorStateSpace::StateType>()->values[0];
+    at_wall += std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01;
+  }
+  return at_wall;
+}
+
 TEST(ExactRRTConnect, ExtensionsStopAtTheWall) {
   // Blocked extensions keep the part up to the first contact: some tree
   // nodes end within the validator's resolution of the wall's faces.
@@ -79,14 +93,7 @@ TEST(ExactRRTConnect, ExtensionsStopAtTheWall) {
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   ss.setPlanner(planner);
   ss.solve(5.0);
-  ob::PlannerData data(ss.getSpaceInformation());
-  planner->getPlannerData(data);
-  int at_wall = 0;
-  for (unsigned i = 0; i < data.numVertices(); ++i) {
-    const double x = data.getVertex(i).getState()->as<ob::RealVectorStateSpace::StateType>()->values[0];
-    if (std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01) ++at_wall;
-  }
-  EXPECT_GT(at_wall, 0);
+  EXPECT_GT(statesAtTheWall(*planner, ss.getSpaceInformation()), 0);
 }
 
 TEST(ExactRRTConnect, RangeLimitsExtensions) {
@@ -238,9 +245,10 @@ class ShortGainValidator : public ob::MotionValidator {
 
 /// States in the trees of `ss` after 400 evaluations of the termination
 /// condition, every motion blocked after `gain_steps` steps, min_progress
-/// set to `min_progress` steps; *checks: the motion checks made.
+/// set to `min_progress` steps; *checks: the lastValid checks made (of
+/// blocked edges' steps of blocked_range, 0: the default).
 unsigned statesWithShortGains(og::SimpleSetup ss, double gain_steps, double min_progress, int* checks,
-                              bool rotate_first = false, double probe_steps = 4.0) {
+                              bool rotate_first = false, double probe_steps = 4.0, double blocked_range = 0.0) {
   ompl::RNG::setSeed(13);
   const ob::SpaceInformationPtr& si = ss.getSpaceInformation();
   auto planner = std::make_shared<ExactRRTConnect>(si);
@@ -249,6 +257,7 @@ unsigned statesWithShortGains(og::SimpleSetup ss, double gain_steps, double min_
   planner->setMinProgress(min_progress);
   planner->setProbeSteps(probe_steps);
   planner->setRotateFirst(rotate_first);
+  planner->setBlockedRange(blocked_range);
   ss.setPlanner(planner);
   ss.setup();
   auto validator = std::make_shared<ShortGainValidator>(si, gain_steps);
@@ -343,8 +352,9 @@ TEST(ExactRRTConnect, MinProgressCountsTheEdgesOwnSteps) {
   // (OMPL's validSegmentCount, from the yaw's extent) are 0.016 long, while
   // the space's longest valid segment (resolution x the sum of the extents)
   // is 1.43. Every motion is blocked, so every extension is one rotation in
-  // place, kept up to lastValid or not: a gain of 1.5 of the edge's steps is
-  // progress, 0.6 is not.
+  // place, whose step of blocked_range (0.1: a turn of 0.2 rad) is kept up
+  // to lastValid or not: a gain of 1.5 of the step's steps is progress, 0.6
+  // is not.
   const auto square = [] {
     og::SimpleSetup ss = makeRodSetup(80.0, 80.0, 1.0);
     ob::RealVectorBounds bounds(2);
@@ -356,9 +366,105 @@ TEST(ExactRRTConnect, MinProgressCountsTheEdgesOwnSteps) {
     return ss;
   };
   int checks = 0;
-  EXPECT_EQ(statesWithShortGains(square(), 0.6, 1.0, &checks, true), 2u);
+  EXPECT_EQ(statesWithShortGains(square(), 0.6, 1.0, &checks, true, 4.0, 0.1), 2u);
   EXPECT_GT(checks, 10);
-  EXPECT_GT(statesWithShortGains(square(), 1.5, 1.0, &checks, true), 10u);
+  EXPECT_GT(statesWithShortGains(square(), 1.5, 1.0, &checks, true, 4.0, 0.1), 10u);
+}
+
+/// OMPL's discrete validator, recording the length of every edge it is
+/// asked about and whether the edge was free, by overload.
+class RecordingValidator : public ob::DiscreteMotionValidator {
+ public:
+  using ob::DiscreteMotionValidator::DiscreteMotionValidator;
+  bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    const bool valid = ob::DiscreteMotionValidator::checkMotion(s1, s2);
+    if (recording) validity.push_back({si_->distance(s1, s2), valid});
+    return valid;
+  }
+  bool checkMotion(const ob::State* s1, const ob::State* s2, std::pair<ob::State*, double>& lastValid) const override {
+    const bool valid = ob::DiscreteMotionValidator::checkMotion(s1, s2, lastValid);
+    if (recording) last_valid.push_back({si_->distance(s1, s2), valid});
+    return valid;
+  }
+  struct Check {
+    double length;
+    bool valid;
+  };
+  mutable std::vector<Check> validity, last_valid;
+  bool recording = true;
+};
+
+/// Solves `ss` with `planner` (no probe: every blocked edge reaches its
+/// motion checks), its motions checked by a RecordingValidator, which it
+/// returns; the path found must be valid.
+std::shared_ptr<RecordingValidator> solveRecorded(og::SimpleSetup& ss,
+                                                  const std::shared_ptr<ExactRRTConnect>& planner) {
+  planner->setProbeSteps(0.0);
+  ss.setPlanner(planner);
+  ss.setup();
+  auto validator = std::make_shared<RecordingValidator>(ss.getSpaceInformation());
+  ss.getSpaceInformation()->setMotionValidator(validator);
+  EXPECT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  validator->recording = false;  // the planner's checks only
+  EXPECT_TRUE(ss.getSolutionPath().check());
+  return validator;
+}
+
+TEST(ExactRRTConnect, BlockedRangeIsOmplsDefaultRangeUnlessSet) {
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  EXPECT_EQ(planner->getBlockedRange(), 0.0);
+  ss.setPlanner(planner);
+  ss.setup();
+  EXPECT_DOUBLE_EQ(planner->getBlockedRange(), 0.2 * std::sqrt(200.0));  // 0.2 of the square's diagonal
+  EXPECT_NEAR(std::stod(planner->params().getParam("blocked_range")->getValue()), 2.82843, 1e-5);  // as OMPL prints it
+  auto set = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  set->setBlockedRange(1.5);
+  ss.setPlanner(set);
+  ss.setup();
+  EXPECT_EQ(set->getBlockedRange(), 1.5);
+}
+
+TEST(ExactRRTConnect, ABlockedEdgeFallsBackToAStepOfBlockedRange) {
+  // Each edge is first checked whole for validity; only a blocked one
+  // longer than blocked_range (1.5) is followed by a lastValid check, of its
+  // step of 1.5 toward the target; a blocked one no longer adds nothing.
+  ompl::RNG::setSeed(19);
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  constexpr double kStep = 1.5;
+  planner->setBlockedRange(kStep);
+  const auto validator = solveRecorded(ss, planner);
+  int blocked_long = 0, blocked_short = 0;
+  for (const RecordingValidator::Check& c : validator->validity) {
+    if (!c.valid) ++(c.length > kStep ? blocked_long : blocked_short);
+  }
+  EXPECT_GT(blocked_long, 5);
+  EXPECT_GT(blocked_short, 0);  // the test's sample holds both kinds
+  EXPECT_EQ(static_cast<int>(validator->last_valid.size()), blocked_long);
+  int steps_blocked = 0;
+  for (const RecordingValidator::Check& c : validator->last_valid) {
+    EXPECT_NEAR(c.length, kStep, 1e-9);
+    steps_blocked += !c.valid;
+  }
+  EXPECT_GT(steps_blocked, 0);  // some steps were kept up to lastValid
+}
+
+TEST(ExactRRTConnect, WholeEdgeLastValidKeepsEveryBlockedEdgeUpToLastValid) {
+  // whole_edge_last_valid: every edge is one lastValid check, none a
+  // validity check first, and blocked edges of any length are kept up to
+  // lastValid: tree states end at the wall's faces.
+  ompl::RNG::setSeed(19);
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  EXPECT_FALSE(planner->getWholeEdgeLastValid());  // off by default
+  planner->setWholeEdgeLastValid(true);
+  const auto validator = solveRecorded(ss, planner);
+  EXPECT_TRUE(validator->validity.empty());
+  int blocked_short = 0;
+  for (const RecordingValidator::Check& c : validator->last_valid) blocked_short += !c.valid && c.length < 2.8;
+  EXPECT_GT(blocked_short, 0);
+  EXPECT_GT(statesAtTheWall(*planner, ss.getSpaceInformation()), 0);
 }
 
 TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
@@ -368,7 +474,9 @@ TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
     EXPECT_THROW(planner.setRange(bad), InvalidInputError) << bad;
     EXPECT_THROW(planner.setMinProgress(bad), InvalidInputError) << bad;
     EXPECT_THROW(planner.setProbeSteps(bad), InvalidInputError) << bad;
+    EXPECT_THROW(planner.setBlockedRange(bad), InvalidInputError) << bad;
   }
+  EXPECT_THROW(planner.setBlockedRange(HUGE_VAL), InvalidInputError);
   EXPECT_THROW(planner.setMinProgress(HUGE_VAL), InvalidInputError);
   EXPECT_THROW(planner.setProbeSteps(HUGE_VAL), InvalidInputError);
   try {
@@ -387,6 +495,7 @@ TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
   EXPECT_DOUBLE_EQ(planner.getRange(), 0.0);  // unchanged by the refused values
   EXPECT_DOUBLE_EQ(planner.getMinProgress(), 1.0);
   EXPECT_DOUBLE_EQ(planner.getProbeSteps(), 4.0);
+  EXPECT_DOUBLE_EQ(planner.getBlockedRange(), 0.0);
   planner.setRange(HUGE_VAL);  // an infinite range is no limit, as 0
   planner.setMinProgress(0.0);
   EXPECT_EQ(planner.getMinProgress(), 0.0);

@@ -321,6 +321,18 @@ TEST(PlannerFactory, IntegerAndBooleanParametersAreCheckedForTheirType) {
     const ob::PlannerPtr p = makePlanner("mdd_rrtconnect", se3(), {{"rotate_first", no}});
     EXPECT_EQ(p->params().getParam("rotate_first")->getValue(), "0") << no;
   }
+  // mdd_rrtconnect's step when blocked: a finite distance >= 0 and a boolean.
+  EXPECT_EQ(makePlanner("mdd_rrtconnect", se3(), {{"whole_edge_last_valid", "yes"}})
+                ->params()
+                .getParam("whole_edge_last_valid")
+                ->getValue(),
+            "1");
+  EXPECT_EQ(refusal("mdd_rrtconnect", "blocked_range", "2.5"), "");
+  EXPECT_EQ(refusal("mdd_rrtconnect", "blocked_range", "inf"),
+            "planner 'mdd_rrtconnect': parameter 'blocked_range' = 'inf': not a finite number");
+  EXPECT_EQ(refusal("mdd_rrtconnect", "blocked_range", "-1"),
+            "planner 'mdd_rrtconnect': parameter 'blocked_range' = '-1': ExactRRTConnect: blocked_range must be a "
+            "finite distance >= 0 (0: OMPL's default range), got -1");
   for (const char* bad : {"abc", "", "-1", "00", "0.0"}) {
     EXPECT_EQ(refusal("mdd_rrtconnect", "rotate_first", bad),
               std::string("planner 'mdd_rrtconnect': parameter 'rotate_first' = '") + bad +

@@ -5,6 +5,7 @@
 #include <ompl/base/spaces/SE2StateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
+#include <ompl/tools/config/MagicConstants.h>
 #include <ompl/tools/config/SelfConfig.h>
 
 #include <algorithm>
@@ -171,6 +172,11 @@ bool ExactRRTConnect::isProgress(double fraction, const ob::State* from, const o
   return gain >= min_progress_ * (1.0 - kStepRoundoff) && gain >= kMinGainSteps;
 }
 
+double ExactRRTConnect::blockedStep() const {
+  if (blocked_range_ > 0.0) return blocked_range_;
+  return ompl::magic::MAX_MOTION_LENGTH_AS_SPACE_EXTENT_FRACTION * si_->getMaximumExtent();
+}
+
 ExactRRTConnect::Motion* ExactRRTConnect::upToLastValid(const Tree& tree, Motion* from, const ob::State* to,
                                                         bool* free) {
   ob::State* last = si_->allocState();
@@ -210,13 +216,15 @@ ExactRRTConnect::Motion* ExactRRTConnect::edge(const Tree& tree, Motion* from, c
     // 3. Otherwise the whole edge: one validity check.
     added = addMotion(tree, from, to);
     *reached = true;
-  } else if (const double d = si_->distance(from->state, to); d > blocked_range_) {
+  } else if (const double d = si_->distance(from->state, to), step = blockedStep();
+             d > step && step / d * steps >= kMinGainSteps) {
     // 4. Blocked, and longer than blocked_range: RRT-Connect's step of
     //    blocked_range toward `to` (a prefix of the edge under OMPL's
     //    interpolation), kept whole when free, else up to lastValid when that
     //    is progress (min_progress of the step's own steps). A blocked edge
-    //    no longer than blocked_range adds nothing (the header says why).
-    space->interpolate(from->state, to, blocked_range_ / d, work);
+    //    no longer than blocked_range adds nothing (the header says why),
+    //    nor a step of less than kMinGainSteps of the edge's steps.
+    space->interpolate(from->state, to, step / d, work);
     bool step_free = false;
     added = upToLastValid(tree, from, work, &step_free);
   }
@@ -251,8 +259,8 @@ ExactRRTConnect::Extend ExactRRTConnect::extend(const Tree& tree, const ob::Stat
     blocked = !reached;
   }
   si_->freeState(turned);
-  // 3. The (remaining) edge to the goal: one motion check; when blocked, the
-  //    validator's last valid state before the first contact.
+  // 3. The (remaining) edge to the goal (edge(): the whole edge, or when
+  //    blocked its step, kept up to lastValid).
   if (!blocked) {
     Motion* m = edge(tree, from, goal, &reached);
     if (m != nullptr) from = m;
@@ -303,8 +311,8 @@ ob::PlannerStatus ExactRRTConnect::solve(const ob::PlannerTerminationCondition& 
     if (extend(tree, sample, &added) != Extend::kTrapped) {
       Motion* joined = nullptr;
       // CONNECT: extend the other tree toward the new node while it advances
-      // (a free step, or a blocked edge kept up to lastValid; see the header)
-      // until it reaches the node or adds nothing.
+      // (a step kept whole or up to lastValid; see the header) until it
+      // reaches the node or adds nothing.
       Extend connect = Extend::kAdvanced;
       while (connect == Extend::kAdvanced && !ptc) connect = extend(other, added->state, &joined);
       if (connect == Extend::kReached) {

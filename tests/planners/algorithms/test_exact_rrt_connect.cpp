@@ -394,6 +394,31 @@ class RecordingValidator : public ob::DiscreteMotionValidator {
   bool recording = true;
 };
 
+/// The planner's tree edges: their lengths and whether their newer end is
+/// within 0.01 of makeSetup's wall faces.
+struct TreeEdge {
+  double length;
+  bool to_wall;
+};
+std::vector<TreeEdge> treeEdges(const ExactRRTConnect& planner, const ob::SpaceInformationPtr& si) {
+  ob::PlannerData data(si);
+  planner.getPlannerData(data);
+  std::vector<TreeEdge> edges;
+  for (unsigned i = 0; i < data.numVertices(); ++i) {
+    std::vector<unsigned> out;
+    data.getEdges(i, out);
+    for (const unsigned j : out) {
+      // Start tree edges point away from the root, goal tree ones toward it.
+      const bool start_tree = data.getVertex(i).getTag() == 1;
+      const ob::State* newer = data.getVertex(start_tree ? j : i).getState();
+      const double x = newer->as<ob::RealVectorStateSpace::StateType>()->values[0];
+      edges.push_back({si->distance(data.getVertex(i).getState(), data.getVertex(j).getState()),
+                       std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01});
+    }
+  }
+  return edges;
+}
+
 /// Solves `ss` with `planner` (no probe: every blocked edge reaches its
 /// motion checks), its motions checked by a RecordingValidator, which it
 /// returns; the path found must be valid.
@@ -447,7 +472,36 @@ TEST(ExactRRTConnect, ABlockedEdgeFallsBackToAStepOfBlockedRange) {
     EXPECT_NEAR(c.length, kStep, 1e-9);
     steps_blocked += !c.valid;
   }
-  EXPECT_GT(steps_blocked, 0);  // some steps were kept up to lastValid
+  EXPECT_GT(steps_blocked, 0);  // some steps were blocked
+  // In the trees: steps kept whole (exactly kStep long), steps kept up to
+  // lastValid (shorter, ending at the wall), and nothing else that ends at
+  // the wall (a whole edge ends at its target, never at the wall).
+  int whole_steps = 0, cut_steps = 0;
+  for (const TreeEdge& e : treeEdges(*planner, ss.getSpaceInformation())) {
+    whole_steps += std::abs(e.length - kStep) < 1e-9;
+    if (e.to_wall) {
+      EXPECT_LT(e.length, kStep - 1e-9);
+      ++cut_steps;
+    }
+  }
+  EXPECT_GT(whole_steps, 0);
+  EXPECT_GT(cut_steps, 0);
+}
+
+TEST(ExactRRTConnect, ABlockedRangeSetToZeroAfterSetupIsOmplsRangeAgain) {
+  // 0 set after setup() (which configures it once) must not make steps of
+  // length 0 (copies of a tree state, which CONNECT repeated without end):
+  // the step is OMPL's default range then, as before setup().
+  ompl::RNG::setSeed(23);
+  og::SimpleSetup ss = makeSetup();
+  auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
+  ss.setPlanner(planner);
+  ss.setup();
+  planner->setBlockedRange(0.0);
+  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  int copies = 0;
+  for (const TreeEdge& e : treeEdges(*planner, ss.getSpaceInformation())) copies += e.length <= 1e-6;
+  EXPECT_LE(copies, 1);  // the joining edge's: its goal-tree end is a copy of the joining state
 }
 
 TEST(ExactRRTConnect, WholeEdgeLastValidKeepsEveryBlockedEdgeUpToLastValid) {
@@ -464,7 +518,12 @@ TEST(ExactRRTConnect, WholeEdgeLastValidKeepsEveryBlockedEdgeUpToLastValid) {
   int blocked_short = 0;
   for (const RecordingValidator::Check& c : validator->last_valid) blocked_short += !c.valid && c.length < 2.8;
   EXPECT_GT(blocked_short, 0);
-  EXPECT_GT(statesAtTheWall(*planner, ss.getSpaceInformation()), 0);
+  // Blocked edges longer than the default step (2.83) kept up to their
+  // contact: tree edges ending at the wall that long (the default mode's end
+  // there after a step, no longer).
+  int long_to_wall = 0;
+  for (const TreeEdge& e : treeEdges(*planner, ss.getSpaceInformation())) long_to_wall += e.to_wall && e.length > 2.9;
+  EXPECT_GT(long_to_wall, 0);
 }
 
 TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {

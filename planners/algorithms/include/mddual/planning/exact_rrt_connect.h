@@ -31,13 +31,13 @@
 // 0.493 / 0.922 s -> 1.09 / 0.590 / 0.686 (OMPL's RRT-Connect with the same
 // checker: bugtrap 0.114 / 0.214 s, twistycool 3.63 / 3.45 s with seeds 1
 // and 2). Asking lastValid of a blocked edge no longer than the step too
-// was no faster than the whole edge (bugtrap 0.241 / 0.272 / 0.304 s,
-// twistycool 0.507 / 0.642 / 0.717, the maze 0.107 / 0.108 / 0.108), and
+// gave back most of the gain (bugtrap 0.241 / 0.272 / 0.304 s, twistycool
+// 0.507 / 0.642 / 0.717, the maze 0.107 / 0.108 / 0.108), and
 // checking the step for validity only lost twistycool (seed 3: 5.52 s, 8 of
 // 10 solved) while it gained bugtrap (0.0792 s). Other steps (the same
 // runs): 0.1 of the extent made twistycool faster (0.461 / 0.208 / 0.499 s)
 // and bugtrap slower (0.309 / 0.468 / 0.154 s), the cubicles 1.3x slower,
-// the maze 1.1x, the apartment 1.1x faster; 0.4 made twistycool slower than
+// the maze 1.1x, the apartment 0.91x to 1.41x; 0.4 made twistycool slower than
 // the whole edge (3.02 / 2.46 / 2.26 s) and the maze 1.3x slower. 0.2, OMPL's
 // own default range, lies between them. Where the way is a narrow slot the
 // whole edge up to lastValid stays the faster (whole_edge_last_valid = 1):
@@ -56,7 +56,11 @@
 // one exact sweep with MDD-DUAL (first contact = lastValid), and the rotation
 // in place sweeps less volume than a rotation combined with a long
 // translation. A blocked rotation (its step kept as any blocked edge's) ends
-// the extension there. Other spaces extend along the straight edge as before.
+// the extension there. A rotation in place is short in the space's distance
+// (at most pi/2 in SE(3), pi/2 in SE(2) with OMPL's weights), mostly no
+// longer than the default blocked_range, so a blocked one mostly adds
+// nothing: with rotate_first, a smaller blocked_range or
+// whole_edge_last_valid keeps those. Other spaces extend along the straight edge as before.
 //
 // Parameters (ompl::base::ParamSet): "range" (0 = unlimited, the default:
 // extensions are only limited by contact), "blocked_range" (the step a
@@ -178,10 +182,9 @@ class ExactRRTConnect : public ompl::base::Planner {
   Extend extend(const Tree& tree, const ompl::base::State* target, Motion** added);
   /// One edge from `from` toward `to` (one validity check; when blocked and
   /// longer than blocked_range, the step of blocked_range toward `to`, up to
-  /// lastValid if that is progress): the motion added, or nullptr.
+  /// lastValid if that is progress; with whole_edge_last_valid, one lastValid
+  /// check of the whole edge): the motion added, or nullptr.
   Motion* edge(const Tree& tree, Motion* from, const ompl::base::State* to, bool* reached);
-  /// Writes `from`'s position with `to`'s orientation to `out`; false when
-  /// the space is not SE(2) or SE(3) (or rotate_first is off).
   /// One lastValid check of from -> to: the motion to `to` when it is free
   /// (*free), else to the last valid state when that is progress, else
   /// nullptr.
@@ -189,6 +192,11 @@ class ExactRRTConnect : public ompl::base::Planner {
   /// Whether keeping `fraction` of the edge from -> to gains at least
   /// min_progress of its validity-checking steps (and kMinGainSteps).
   bool isProgress(double fraction, const ompl::base::State* from, const ompl::base::State* to) const;
+  /// The step a blocked edge falls back to: blocked_range, or OMPL's default
+  /// range when it is 0 (set to 0 after setup()).
+  double blockedStep() const;
+  /// Writes `from`'s position with `to`'s orientation to `out`; false when
+  /// the space is not SE(2) or SE(3) (or rotate_first is off).
   bool rotationInPlace(const ompl::base::State* from, const ompl::base::State* to, ompl::base::State* out) const;
   Motion* addMotion(const Tree& tree, Motion* parent, const ompl::base::State* state);
   void freeTree(const Tree& tree);

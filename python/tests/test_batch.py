@@ -115,6 +115,21 @@ def test_empty_batch_gives_empty_arrays(unit_cube):
     assert out["normal"].shape == (0, 3)
 
 
+def test_empty_batch_checks_what_conversion_checks(unit_cube):
+    """K = 0 runs no query: shapes, types and the poses' last rows are checked, query values not."""
+    none = np.zeros((0, 4, 4))
+    out = mddual.mdd_batch(unit_cube, None, unit_cube, none, [0.0, 0.0, 0.0])  # a query would refuse it
+    assert out["distance"].shape == (0,)
+    X_WA = np.eye(4)
+    X_WA[3, 0] = np.nan
+    with pytest.raises(mddual.InvalidInputError, match="X_WA: the last row"):
+        mddual.mdd_batch(unit_cube, X_WA, unit_cube, none, [1.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="directions: expected"):
+        mddual.mdd_batch(unit_cube, None, unit_cube, none, [1.0, 0.0])
+    with pytest.raises(TypeError, match="directions"):
+        mddual.mdd_batch(unit_cube, None, unit_cube, none, ["a", "b", "c"])
+
+
 def test_batch_sizes_must_agree(unit_cube):
     X_WB = np.stack([translation(x) for x in (2.0, 3.0, 4.0)])
     with pytest.raises(ValueError, match="batch sizes differ: X_WB has 3 entries, directions has 2"):

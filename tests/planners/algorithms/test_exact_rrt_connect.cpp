@@ -73,15 +73,18 @@ TEST(ExactRRTConnect, SolvesThroughTheGapWithAValidPath) {
   EXPECT_NEAR(last->values[0], 9.0, 1e-12);
 }
 
-/// The planner's tree states within 0.01 of makeSetup's wall faces.
+/// Whether the state is within 0.01 of makeSetup's wall faces.
+bool atTheWall(const ob::State* s) {
+  const double x = s->as<ob::RealVectorStateSpace::StateType>()->values[0];
+  return std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01;
+}
+
+/// The planner's tree states at the wall (atTheWall).
 int statesAtTheWall(const ExactRRTConnect& planner, const ob::SpaceInformationPtr& si) {
   ob::PlannerData data(si);
   planner.getPlannerData(data);
   int at_wall = 0;
-  for (unsigned i = 0; i < data.numVertices(); ++i) {
-    const double x = data.getVertex(i).getState()->as<ob::RealVectorStateSpace::StateType>()->values[0];
-    at_wall += std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01;
-  }
+  for (unsigned i = 0; i < data.numVertices(); ++i) at_wall += atTheWall(data.getVertex(i).getState());
   return at_wall;
 }
 
@@ -395,7 +398,7 @@ class RecordingValidator : public ob::DiscreteMotionValidator {
 };
 
 /// The planner's tree edges: their lengths and whether their newer end is
-/// within 0.01 of makeSetup's wall faces.
+/// at the wall (atTheWall).
 struct TreeEdge {
   double length;
   bool to_wall;
@@ -411,9 +414,7 @@ std::vector<TreeEdge> treeEdges(const ExactRRTConnect& planner, const ob::SpaceI
       // Start tree edges point away from the root, goal tree ones toward it.
       const bool start_tree = data.getVertex(i).getTag() == 1;
       const ob::State* newer = data.getVertex(start_tree ? j : i).getState();
-      const double x = newer->as<ob::RealVectorStateSpace::StateType>()->values[0];
-      edges.push_back({si->distance(data.getVertex(i).getState(), data.getVertex(j).getState()),
-                       std::abs(x - 4.9) < 0.01 || std::abs(x - 5.1) < 0.01});
+      edges.push_back({si->distance(data.getVertex(i).getState(), data.getVertex(j).getState()), atTheWall(newer)});
     }
   }
   return edges;

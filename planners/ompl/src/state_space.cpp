@@ -306,6 +306,7 @@ PlanningSpace::PlanningSpace(SpaceKind kind, const Eigen::AlignedBox3d& bounds, 
       break;
     }
   }
+  findRotationParts();
 }
 
 PlanningSpace::PlanningSpace(SpaceKind kind, ob::StateSpacePtr space, int pose_index, const SpaceWrapOptions& options)
@@ -333,6 +334,7 @@ PlanningSpace::PlanningSpace(SpaceKind kind, ob::StateSpacePtr space, int pose_i
   checkBounds(bounds_, position_dims_,
               "PlanningSpace::wrap: state space '" + space_->getName() + "' (pose part '" + part->getName() +
                   "'; set its bounds before wrapping)");
+  findRotationParts();
 }
 
 void PlanningSpace::setFixedPose(double z, const Eigen::Quaterniond& q_WR) {
@@ -539,28 +541,34 @@ bool PlanningSpace::positionInBounds(const Eigen::Vector3d& p) const {
   return true;
 }
 
-namespace {
-
-/// Whether every SO(2) and SO(3) component of `state` (the space itself or
-/// any component of a compound space, at any depth) satisfies its bounds.
-bool rotationComponentsWithinBounds(const ob::StateSpace& space, const ob::State* state) {
-  if (dynamic_cast<const ob::SO2StateSpace*>(&space) != nullptr ||
-      dynamic_cast<const ob::SO3StateSpace*>(&space) != nullptr) {
-    return space.satisfiesBounds(state);
-  }
-  if (const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space)) {
-    const auto* cs = state->as<ob::CompoundState>();
-    for (unsigned int i = 0; i < c->getSubspaceCount(); ++i) {
-      if (!rotationComponentsWithinBounds(*c->getSubspace(i), cs->components[i])) return false;
+void PlanningSpace::findRotationParts() {
+  // The space itself or any component of a compound space, at any depth.
+  std::vector<unsigned int> path;
+  const auto visit = [&](const auto& self, const ob::StateSpace& space) -> void {
+    if (dynamic_cast<const ob::SO2StateSpace*>(&space) != nullptr ||
+        dynamic_cast<const ob::SO3StateSpace*>(&space) != nullptr) {
+      rotation_parts_.push_back(RotationPart{&space, path});
+      return;
     }
-  }
-  return true;
+    if (const auto* c = dynamic_cast<const ob::CompoundStateSpace*>(&space)) {
+      for (unsigned int i = 0; i < c->getSubspaceCount(); ++i) {
+        path.push_back(i);
+        self(self, *c->getSubspace(i));
+        path.pop_back();
+      }
+    }
+  };
+  rotation_parts_.clear();
+  visit(visit, *space_);
 }
 
-}  // namespace
-
 bool PlanningSpace::rotationsWithinBounds(const ob::State* state) const {
-  return rotationComponentsWithinBounds(*space_, state);
+  for (const RotationPart& part : rotation_parts_) {
+    const ob::State* s = state;
+    for (const unsigned int i : part.path) s = s->as<ob::CompoundState>()->components[i];
+    if (!part.space->satisfiesBounds(s)) return false;
+  }
+  return true;
 }
 
 double PlanningSpace::boundsExitFraction(const Eigen::Vector3d& p1, const Eigen::Vector3d& p2) const {

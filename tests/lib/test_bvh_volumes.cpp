@@ -258,5 +258,111 @@ TEST(Bvh, TriangleAgainstABoxAgreesWithTheCore) {
   EXPECT_FALSE(triangleObbApart(diagonal, unit, 0.2));
 }
 
+TEST(Bvh, TriangleCastIsTheStaticTriangleTestAtEveryTime) {
+  // triangleObbCastInterval against triangleObbApart at sampled s: inside
+  // the interval the moved box meets the triangle, outside it (and on a false
+  // answer, everywhere) it does not; the inner box's verdict holds at every
+  // sampled s. Triangles of every shape (large, thin, slivers, segments), boxes
+  // flat and thick, motions along and across the triangle.
+  Rng rng(43);
+  int meets_count = 0, cleared_count = 0, inner_apart_while_meeting = 0, inner_meets = 0, box_cast_misses = 0;
+  for (int q = 0; q < 3000; ++q) {
+    Obb moving = randomBox(rng, 2.0, q % 5 == 0 ? 0.001 : 0.05, 0.6);
+    const Eigen::Vector3d inner_half = moving.half;
+    moving.half += Eigen::Vector3d::Constant(uniform(rng, 0.0, 0.3));
+    std::array<Eigen::Vector3d, 3> tri;
+    const double size = q % 3 == 0 ? 3.0 : 1.0;
+    for (Eigen::Vector3d& v : tri) v = uniformVector(rng, -size, size);
+    const bool segment = q % 50 == 0;
+    if (segment) tri[2] = 0.5 * (tri[0] + tri[1]);
+    if (q % 50 == 25) {
+      // A sliver at the loaders' limit (height 1e-7 of the longest edge):
+      // the normal's computed direction is off its plane by about 1e-9.
+      const Eigen::Vector3d f = tri[1] - tri[0];
+      tri[2] = 0.5 * (tri[0] + tri[1]) + 1e-7 * f.norm() * f.unitOrthogonal();
+    }
+    // Toward the triangle (most casts meet it) or any way; u of any length.
+    Eigen::Vector3d u =
+        q % 2 == 0 ? Eigen::Vector3d(tri[0] - moving.centre_F).normalized() : generators::randomUnitVector(rng);
+    u *= q % 7 == 0 ? 0.3 : 1.0;
+    const double max_s = q % 4 == 0 ? 1.0 : 5.0;
+    const double slack = q % 3 == 0 ? 1e-9 : 0.0;
+    double lo = -1, hi = -1;
+    bool inner_apart = false;
+    const bool meets = triangleObbCastInterval(tri, moving, u, max_s, slack, &lo, &hi, &inner_half, &inner_apart);
+    std::ostringstream repro;
+    repro << std::setprecision(17) << "query " << q << ": moving centre " << moving.centre_F.transpose() << ", half "
+          << moving.half.transpose() << ", axes " << moving.axes_F.reshaped().transpose() << ", inner half "
+          << inner_half.transpose() << "; triangle " << tri[0].transpose() << " / " << tri[1].transpose() << " / "
+          << tri[2].transpose() << "; u " << u.transpose() << ", max_s " << max_s << ", slack " << slack;
+    // Without the inner box: the same interval.
+    double plain_lo = -1, plain_hi = -1;
+    ASSERT_EQ(triangleObbCastInterval(tri, moving, u, max_s, slack, &plain_lo, &plain_hi), meets) << repro.str();
+    if (meets) {
+      EXPECT_EQ(plain_lo, lo) << repro.str();
+      EXPECT_EQ(plain_hi, hi) << repro.str();
+      EXPECT_LE(0.0, lo) << repro.str();
+      EXPECT_LE(lo, hi) << repro.str();
+      EXPECT_LE(hi, max_s) << repro.str();
+    } else {
+      EXPECT_TRUE(inner_apart) << repro.str();
+    }
+    const double tol = 1e-9 * max_s;
+    bool inner_met_somewhere = false;
+    for (int k = 0; k <= 100; ++k) {
+      const double s = max_s * k / 100.0;
+      Obb moved = moving;
+      moved.centre_F += s * u;
+      if (segment) {
+        // triangleObbApart's normal axis is round-off for a segment: the
+        // cast is only asked to be sound (a point of the segment in the
+        // moved box lies in the interval).
+        const bool outside = !meets || s < lo - tol || s > hi + tol;
+        for (int j = 0; j <= 50 && outside; ++j) {
+          EXPECT_GT(distanceToBox(moved, tri[0] + (j / 50.0) * (tri[1] - tri[0])), 0.0) << repro.str() << " at s " << s;
+        }
+        continue;
+      }
+      const bool apart = triangleObbApart(tri, moved, slack);
+      if (meets && s > lo + tol && s < hi - tol) {
+        EXPECT_FALSE(apart) << repro.str() << " at s " << s;
+      }
+      if (!meets || s < lo - tol || s > hi + tol) {
+        EXPECT_TRUE(apart) << repro.str() << " at s " << s;
+      }
+      Obb inner = moved;
+      inner.half = inner_half;
+      inner_met_somewhere |= !triangleObbApart(tri, inner, 0.0);
+    }
+    if (inner_apart) {
+      EXPECT_FALSE(inner_met_somewhere) << repro.str();
+    }
+    // The triangle's own box cast (what the traversals tested before): it
+    // never clears a cast the triangle meets, and meets some it clears.
+    Obb tri_box;
+    tri_box.centre_F = (tri[0] + tri[1] + tri[2]) / 3.0;
+    tri_box.half = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& v : tri) tri_box.half = tri_box.half.cwiseMax((v - tri_box.centre_F).cwiseAbs());
+    double box_lo = 0, box_hi = 0;
+    const bool box_meets = obbCastInterval(tri_box, moving, u, max_s, 0.0, &box_lo, &box_hi);
+    if (meets) {
+      ++meets_count;
+      inner_apart_while_meeting += inner_apart;
+      inner_meets += !inner_apart;
+      EXPECT_TRUE(box_meets) << repro.str();
+    } else {
+      ++cleared_count;
+      box_cast_misses += box_meets;
+    }
+  }
+  // Not vacuous: both answers, both inner verdicts while meeting, and casts
+  // the triangle clears where its box does not.
+  EXPECT_GT(meets_count, 900);
+  EXPECT_GT(cleared_count, 600);
+  EXPECT_GT(inner_apart_while_meeting, 100);
+  EXPECT_GT(inner_meets, 300);
+  EXPECT_GT(box_cast_misses, 100);
+}
+
 }  // namespace
 }  // namespace mddual

@@ -151,6 +151,21 @@ bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, con
 /// world leaf that is a triangle is tested with it in place of its box.
 bool triangleObbApart(const std::array<Eigen::Vector3d, 3>& tri, const Obb& box, double slack);
 
+/// The cast of `moving` (frame F), translated by s u for s in [0, max_s] (u
+/// of any length), against the fixed triangle `tri` (three points, frame F):
+/// false when, on one of triangleObbApart's 13 axes, the box and the
+/// triangle are apart (by more than the slack) at every s; otherwise true
+/// with [*s_lo, *s_hi] the s at which no axis separates them: exactly the s
+/// at which triangleObbApart(tri, moving at s, slack) is false (each axis
+/// keeps an interval of s, as in obbCastInterval). With inner_half (each <=
+/// moving.half), *inner_apart is set to whether the box of moving's centre
+/// and axes and those half extents is apart from the triangle on one of the
+/// 13 axes with no slack at every s (true when this returns false), as in
+/// obbCastIntervalInner.
+bool triangleObbCastInterval(const std::array<Eigen::Vector3d, 3>& tri, const Obb& moving, const Eigen::Vector3d& u,
+                             double max_s, double slack, double* s_lo, double* s_hi,
+                             const Eigen::Vector3d* inner_half = nullptr, bool* inner_apart = nullptr);
+
 /// Options of a Bvh.
 struct BvhOptions {
   /// Inner nodes with at most this many pieces also get the convex hull of
@@ -304,7 +319,9 @@ using CastLeafFn = FunctionRef<double(int piece_a, int piece_b, double limit)>;
 /// +infinity) against set a. Node pairs are bounded below by the first
 /// distance at which their swept volumes may meet (spheres, axis-aligned
 /// boxes, and the oriented boxes on their six face axes: an interval that
-/// holds the exact one of obbCastInterval, for less work), raised to the toi
+/// holds the exact one of obbCastInterval, for less work; without
+/// first_contact, a triangle leaf of a larger than b's node on its 13 axes,
+/// triangleObbCastInterval), raised to the toi
 /// of their hulls when both have one, and visited nearest first by that bound
 /// (depth first with first_contact = false); a pair whose bound is not below
 /// the best contact so far is pruned, and the leaf function is called with

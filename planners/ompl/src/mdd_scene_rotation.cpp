@@ -60,7 +60,8 @@ struct Interval {
 /// (the split heuristic's question), as bound() found it.
 enum class Ungrown : signed char {
   kUnknown,  ///< not asked (a sweep of length 0: bound() tests the boxes at rest)
-  kApart,    ///< N's box without e misses M's box on the 6 face axes over the sweep
+  kApart,    ///< N's box without e misses M's box on the 6 face axes (a triangle leaf: the triangle on its 13) over the
+             ///< sweep
   kMeets,    ///< it does not: the nodes, not the growth, keep the triple
 };
 
@@ -268,10 +269,24 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     }
     const Obb& box_W = posed.box_W;
     if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), u_W, length, slack)) return kInf;
-    if (length == 0.0) return obbsDisjoint(M.obb, box_W, slack) ? kInf : I.ta;
+    // A world leaf that is a triangle: the triangle itself on its 13 axes in
+    // place of its box (which a large triangle fills only half of), the
+    // inner box's verdict on the same axes. Callgrind (benchmarks/planning
+    // --mdd-only, 1,000 rotating edges of each length): checkMotion
+    // twistycool 9.8% fewer instructions, the cubicles 5.1%, the maze 4.1%,
+    // bugtrap 3.6%, the apartment 2.5%; with lastValid 5.0% (bugtrap) to
+    // 14.4% (the cubicles). Asked only for triangles larger than N's grown
+    // sphere (the translating cast's rule), it was no better anywhere.
+    const std::array<Eigen::Vector3d, 3>* tri = M.triangle >= 0 ? &worldTreeAt(wn & 1).triangle(M.triangle) : nullptr;
+    if (length == 0.0) {
+      const bool apart = tri ? triangleObbApart(*tri, box_W, slack) : obbsDisjoint(M.obb, box_W, slack);
+      return apart ? kInf : I.ta;
+    }
     double lo = 0.0, hi = 0.0;
     bool apart = false;
-    if (!obbCastIntervalInner(M.obb, box_W, N.obb.half, u_W, length, slack, &lo, &hi, &apart)) return kInf;
+    const bool meets = tri ? triangleObbCastInterval(*tri, box_W, u_W, length, slack, &lo, &hi, &N.obb.half, &apart)
+                           : obbCastIntervalInner(M.obb, box_W, N.obb.half, u_W, length, slack, &lo, &hi, &apart);
+    if (!meets) return kInf;
     *ungrown = apart ? Ungrown::kApart : Ungrown::kMeets;
     *until = I.ta + (I.tb - I.ta) * (hi / length);
     return I.ta + (I.tb - I.ta) * (lo / length);

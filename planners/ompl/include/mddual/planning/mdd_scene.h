@@ -49,7 +49,10 @@
 //      hold N at every t in I when translated by s v for s = (t - ta) / (tb -
 //      ta) in [0, 1]. A triple is cleared when one of those volumes swept by
 //      s v, s in [0, 1], misses the same volume of M (swept sphere, slab and
-//      separating-axis tests, exact for each pair of volumes), or when N's
+//      separating-axis tests, exact for each pair of volumes; for a world
+//      leaf that is a triangle, the triangle itself in place of its oriented
+//      box: triangleObbCastInterval, exact on the 13 axes of a triangle and
+//      a box), or when N's
 //      swept sphere misses M's oriented box along one of that box's face
 //      axes (sweptSphereObbApart: a sphere that meets the box meets it on
 //      every axis), or when the sphere of radius max_norm(N) (the largest
@@ -60,12 +63,14 @@
 //      splitting them). Then no piece of N touches a piece of M at any time
 //      of I. Otherwise it is split into two triples that cover it: I
 //      halved, or the larger of N and M replaced by its children (which of
-//      them is a matter of speed, not soundness: mdd_scene_rotation.cpp). The swept oriented boxes meet only for s in
-//      [s_lo, s_hi], so every contact in the triple lies at t in [ta + (tb -
-//      ta) s_lo / |v|, ta + (tb - ta) s_hi / |v|]: a half of I outside that
-//      window is dropped, not split.
+//      them is a matter of speed, not soundness: mdd_scene_rotation.cpp).
+//      The swept oriented boxes (or the box and the triangle) meet only for
+//      s in [s_lo, s_hi], so every contact in the triple lies at t in [ta +
+//      (tb - ta) s_lo / |v|, ta + (tb - ta) s_hi / |v|]: a half of I outside
+//      that window is dropped, not split.
 //      A pair of leaves (robot piece i, world piece j) with e <= delta is
-//      checked with the core: piece i enlarged by delta_k = delta / 2^k, the finest level k
+//      checked with the core: piece i enlarged by delta_k = delta / 2^k, the
+//      finest level k
 //      <= refinement_levels with delta_k >= e (enlargePiece: it holds every
 //      point within delta_k of the piece, hence piece i over all of I), at
 //      orientation R(tm), swept from p(ta) along v against piece j with toi

@@ -16,6 +16,7 @@
 
 #include "family_support.h"
 #include "mddual/bvh.h"
+#include "mddual/distance.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/query.h"
@@ -469,6 +470,71 @@ TEST(Bvh, CastWithAMarginCallsEveryPairItWouldCallWithoutAndMore) {
   // where the margin brought in more pairs.
   EXPECT_GT(intersecting, 4);
   EXPECT_GT(margin_added, 8);
+}
+
+TEST(Bvh, NearestPairFindsTheBruteForceSmallestSignedDistance) {
+  // nearestPair with the core's signed distance at the leaves against the
+  // minimum over every pair: the same value (the same function on the
+  // pair that attains it), apart and overlapping, with and without an upper
+  // bound, and fewer leaf calls than pairs.
+  Rng rng(61);
+  int apart = 0, overlapping = 0;
+  long long leaf_calls = 0, all_pairs = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const std::vector<Points> pa = randomPieces(rng, 80, 5.0), pb = randomPieces(rng, 20, 1.5);
+    const std::vector<ConvexPolytope> ca = polytopes(pa), cb = polytopes(pb);
+    const Bvh a(pa), b(pb);
+    for (int q = 0; q < 8; ++q) {
+      // Inside set a's cube half the time (overlaps), anywhere near it else.
+      const Eigen::Isometry3d X = randomPose(rng, q % 2 == 0 ? 3.0 : 12.0);
+      const auto value = [&](int i, int j) {
+        DistanceInput in;
+        in.a = &cb[static_cast<std::size_t>(j)];
+        in.X_WA = X;
+        in.b = &ca[static_cast<std::size_t>(i)];
+        return distance(in).distance;
+      };
+      double brute = kInf;
+      for (int i = 0; i < a.numPieces(); ++i) {
+        for (int j = 0; j < b.numPieces(); ++j) brute = std::min(brute, value(i, j));
+      }
+      int calls = 0;
+      const NearestHit hit = nearestPair(a, b, X, [&](int i, int j, double) {
+        ++calls;
+        return value(i, j);
+      });
+      std::ostringstream where;
+      where << "trial " << trial << " query " << q;
+      EXPECT_EQ(hit.value, brute) << where.str();
+      EXPECT_EQ(value(hit.piece_a, hit.piece_b), brute) << where.str();
+      ++(brute < 0.0 ? overlapping : apart);
+      leaf_calls += calls;
+      all_pairs += static_cast<long long>(a.numPieces()) * b.numPieces();
+      // An upper bound: pairs at or above it are not reported.
+      EXPECT_EQ(nearestPair(
+                    a, b, X, [&](int i, int j, double) { return value(i, j); }, brute)
+                    .piece_a,
+                -1)
+          << where.str();
+      EXPECT_EQ(nearestPair(
+                    a, b, X, [&](int i, int j, double) { return value(i, j); }, brute + 1.0)
+                    .value,
+                brute)
+          << where.str();
+    }
+  }
+  // Both signs occur, and the bounds prune (most pairs never reach the core).
+  EXPECT_GT(apart, 10);
+  EXPECT_GT(overlapping, 10);
+  EXPECT_LT(leaf_calls, all_pairs / 4);
+  // Bad input.
+  const Bvh t(randomPieces(rng, 4, 1.0));
+  Eigen::Isometry3d nan_pose = Eigen::Isometry3d::Identity();
+  nan_pose.translation().x() = std::nan("");
+  const auto none = [](int, int, double) { return 0.0; };
+  EXPECT_THROW(nearestPair(t, t, nan_pose, none), InvalidInputError);
+  EXPECT_THROW(nearestPair(t, t, Eigen::Isometry3d::Identity(), none, std::nan("")), InvalidInputError);
+  EXPECT_EQ(nearestPair(Bvh(), t, Eigen::Isometry3d::Identity(), none).piece_a, -1);
 }
 
 TEST(Bvh, DegenerateInputs) {

@@ -336,4 +336,34 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
                   double max_distance, CastLeafFn leaf, const CastOptions& options = CastOptions(),
                   BvhStats* stats = nullptr);
 
+/// Result of nearestPair(): the smallest leaf value and its pair.
+struct NearestHit {
+  double value = std::numeric_limits<double>::infinity();  ///< +infinity: no pair beat the upper bound
+  int piece_a = -1;
+  int piece_b = -1;
+  int node_pairs = 0;  ///< node pairs bounded (leaves included)
+};
+
+/// The value of one pair of pieces for nearestPair(): their signed distance
+/// (or any value no smaller; any value >= best when it cannot beat best).
+using NearestLeafFn = FunctionRef<double(int piece_a, int piece_b, double best)>;
+
+/// Branch and bound on the smallest signed distance between a piece of set a
+/// (frame A) and a piece of set b placed at X_AB: node pairs are visited
+/// nearest first by a lower bound of the signed distance of any two convex
+/// pieces inside them, the larger of two (less kBvhSlackRel of their
+/// coordinates' magnitude): the gap between their bounding spheres, |c_a -
+/// c_b| - r_a - r_b (apart: the pieces are at least that far; overlapping:
+/// translating one by r_a + r_b - |c_a - c_b| along the centres' line
+/// separates the spheres, so the depth is at most that), and the same of a's
+/// axis-aligned box and the box around b's posed oriented box (apart: their
+/// distance; overlapping: minus their smallest overlap along an axis, a
+/// translation that separates them). A pair whose bound is not below the best value so
+/// far (at first `upper`, which may be +infinity) is pruned; leaf is called
+/// with best = that value. Returns the smallest leaf value below `upper`.
+/// Throws InvalidInputError for an X_AB with a non-finite entry or a NaN
+/// upper.
+NearestHit nearestPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, NearestLeafFn leaf,
+                       double upper = std::numeric_limits<double>::infinity());
+
 }  // namespace mddual

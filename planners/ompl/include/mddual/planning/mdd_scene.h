@@ -373,6 +373,14 @@ class MddScene {
   /// rebuild: see "Worlds that change" above).
   const Bvh& robotTree() const { return robot_tree_; }
   const Bvh& worldTree() const { return world_tree_; }
+  /// World tree t (0: static, 1: overflow: the pieces added or moved since
+  /// the static tree's last rebuild; either may be empty). Every current world
+  /// piece is a live leaf of exactly one of them.
+  const Bvh& worldTreeAt(int t) const { return t == 0 ? world_tree_ : overflow_tree_; }
+  /// The world index (into world().pieces()) of piece k of world tree t, or
+  /// -1 when that leaf is skipped (its piece removed, or moved into the
+  /// overflow).
+  int worldIndex(int t, int k) const;
 
   // ---- Worlds that change (see the file comment; not thread-safe). The
   // first update copies the world: the World given to the constructor is
@@ -468,11 +476,6 @@ class MddScene {
   std::shared_ptr<WarmTable> warmTable() const;
   /// The warm start of (robot piece, world piece id) of set `set`.
   static WarmStart* warmIn(WarmTable& table, int set, int robot_piece, int world_id);
-  /// World tree t (0: static, 1: overflow).
-  const Bvh& worldTreeAt(int t) const { return t == 0 ? world_tree_ : overflow_tree_; }
-  /// The world index of piece k of world tree t, or -1 when that leaf is
-  /// skipped (removed, or moved into the overflow).
-  int worldIndex(int t, int k) const;
   /// The world, copied on the first update.
   scene::World& mutableWorld();
   /// After an update: the overflow tree, or both trees past the limit.

@@ -1,7 +1,8 @@
 // The exact separation distance between the robot at a pose and the world:
 // the smallest mddual::distance() over every (robot piece, world piece) pair,
-// found with the world's broad phase (an expanding box query) and bounding
-// spheres, which prune every pair that cannot beat the best pair so far.
+// found by a branch and bound of the scene's hierarchies (mddual::nearestPair
+// on the world's trees and the robot's: MddScene::worldTreeAt, robotTree),
+// whose spheres prune every node pair that cannot beat the best pair so far.
 // MddStateValidityChecker::clearance() is this at the state's pose.
 #pragma once
 

@@ -251,7 +251,7 @@ struct InnerCast {
 /// translating traversals; the product's round-off, 1e-16 relative, is far
 /// below the slack).
 bool cutInterval(double p, double q, double r, double* lo, double* hi) {
-  if (q == 0.0) return std::abs(p) <= r && *lo <= *hi;
+  if (q == 0.0) return !(std::abs(p) > r) && *lo <= *hi;  // NaN: not apart
   const double inv = 1.0 / q;
   double s0 = (-r - p) * inv, s1 = (r - p) * inv;
   if (s0 > s1) std::swap(s0, s1);
@@ -432,7 +432,7 @@ bool triangleObbCastInterval(const std::array<Eigen::Vector3d, 3>& tri, const Ob
     return true;
   };
   const auto finish = [&](bool meets) {
-    if (inner_apart) *inner_apart = !meets || !inner_meets;
+    if (inner_apart) *inner_apart = !meets || (inner_half != nullptr && !inner_meets);
     if (meets) {
       *s_lo = lo;
       *s_hi = hi;

@@ -527,6 +527,32 @@ TEST(Bvh, NearestPairFindsTheBruteForceSmallestSignedDistance) {
   EXPECT_GT(apart, 10);
   EXPECT_GT(overlapping, 10);
   EXPECT_LT(leaf_calls, all_pairs / 4);
+  // A leaf callback that runs another nearestPair (on other trees): both
+  // answer as they do alone.
+  {
+    const std::vector<Points> pa = randomPieces(rng, 40, 4.0), pb = randomPieces(rng, 10, 1.0);
+    const std::vector<ConvexPolytope> ca = polytopes(pa), cb = polytopes(pb);
+    const Bvh a(pa), b(pb);
+    const Eigen::Isometry3d X = randomPose(rng, 3.0), Y = randomPose(rng, 3.0);
+    const auto value = [&](const Eigen::Isometry3d& pose, int i, int j) {
+      DistanceInput in;
+      in.a = &cb[static_cast<std::size_t>(j)];
+      in.X_WA = pose;
+      in.b = &ca[static_cast<std::size_t>(i)];
+      return distance(in).distance;
+    };
+    const double alone_x = nearestPair(a, b, X, [&](int i, int j, double) { return value(X, i, j); }).value;
+    const double alone_y = nearestPair(b, a, Y.inverse(), [&](int j, int i, double) { return value(Y, i, j); }).value;
+    int nested = 0;
+    const NearestHit outer = nearestPair(a, b, X, [&](int i, int j, double) {
+      const NearestHit inner = nearestPair(b, a, Y.inverse(), [&](int jj, int ii, double) { return value(Y, ii, jj); });
+      EXPECT_EQ(inner.value, alone_y);
+      ++nested;
+      return value(X, i, j);
+    });
+    EXPECT_EQ(outer.value, alone_x);
+    EXPECT_GT(nested, 0);
+  }
   // Bad input.
   const Bvh t(randomPieces(rng, 4, 1.0));
   Eigen::Isometry3d nan_pose = Eigen::Isometry3d::Identity();
@@ -535,6 +561,8 @@ TEST(Bvh, NearestPairFindsTheBruteForceSmallestSignedDistance) {
   EXPECT_THROW(nearestPair(t, t, nan_pose, none), InvalidInputError);
   EXPECT_THROW(nearestPair(t, t, Eigen::Isometry3d::Identity(), none, std::nan("")), InvalidInputError);
   EXPECT_EQ(nearestPair(Bvh(), t, Eigen::Isometry3d::Identity(), none).piece_a, -1);
+  EXPECT_EQ(nearestPair(t, Bvh(), Eigen::Isometry3d::Identity(), none).piece_a, -1);
+  EXPECT_EQ(nearestPair(t, t, Eigen::Isometry3d::Identity(), none, -kInf).piece_a, -1);  // nothing below -inf
 }
 
 TEST(Bvh, DegenerateInputs) {

@@ -281,9 +281,12 @@ TEST(Bvh, TriangleCastIsTheStaticTriangleTestAtEveryTime) {
       const Eigen::Vector3d f = tri[1] - tri[0];
       tri[2] = 0.5 * (tri[0] + tri[1]) + 1e-7 * f.norm() * f.unitOrthogonal();
     }
-    // Toward the triangle (most casts meet it) or any way; u of any length.
+    // Toward the triangle (most casts meet it) or any way, one in eleven
+    // along a box axis (zero speed along the other two: the q == 0 cut); u of
+    // any length.
     Eigen::Vector3d u =
         q % 2 == 0 ? Eigen::Vector3d(tri[0] - moving.centre_F).normalized() : generators::randomUnitVector(rng);
+    if (q % 11 == 0) u = moving.axes_F.col(q % 3);
     u *= q % 7 == 0 ? 0.3 : 1.0;
     const double max_s = q % 4 == 0 ? 1.0 : 5.0;
     const double slack = q % 3 == 0 ? 1e-9 : 0.0;
@@ -344,7 +347,7 @@ TEST(Bvh, TriangleCastIsTheStaticTriangleTestAtEveryTime) {
     tri_box.half = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& v : tri) tri_box.half = tri_box.half.cwiseMax((v - tri_box.centre_F).cwiseAbs());
     double box_lo = 0, box_hi = 0;
-    const bool box_meets = obbCastInterval(tri_box, moving, u, max_s, 0.0, &box_lo, &box_hi);
+    const bool box_meets = obbCastInterval(tri_box, moving, u, max_s, slack, &box_lo, &box_hi);
     if (meets) {
       ++meets_count;
       inner_apart_while_meeting += inner_apart;

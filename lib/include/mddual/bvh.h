@@ -152,16 +152,17 @@ bool sweptSphereObbApart(const Obb& box, const Eigen::Vector3d& c, double r, con
 bool triangleObbApart(const std::array<Eigen::Vector3d, 3>& tri, const Obb& box, double slack);
 
 /// The cast of `moving` (frame F), translated by s u for s in [0, max_s] (u
-/// of any length), against the fixed triangle `tri` (three points, frame F):
-/// false when, on one of triangleObbApart's 13 axes, the box and the
-/// triangle are apart (by more than the slack) at every s; otherwise true
-/// with [*s_lo, *s_hi] the s at which no axis separates them: exactly the s
-/// at which triangleObbApart(tri, moving at s, slack) is false (each axis
-/// keeps an interval of s, as in obbCastInterval). With inner_half (each <=
-/// moving.half), *inner_apart is set to whether the box of moving's centre
-/// and axes and those half extents is apart from the triangle on one of the
-/// 13 axes with no slack at every s (true when this returns false), as in
-/// obbCastIntervalInner.
+/// of any length, max_s may be +infinity), against the fixed triangle `tri`
+/// (three points, frame F) on triangleObbApart's 13 axes: each axis keeps
+/// the interval of s at which it does not separate them (by more than the
+/// slack), as in obbCastInterval. Returns false when those intervals have no
+/// common s (at every s some axis separates them); otherwise true with
+/// [*s_lo, *s_hi] their common part: exactly the s at which
+/// triangleObbApart(tri, moving at s, slack) is false. With inner_half (each
+/// <= moving.half), *inner_apart is set to whether the box of moving's
+/// centre and axes and those half extents is so separated from the
+/// triangle, with no slack, at every s (true when this returns false), as in
+/// obbCastIntervalInner; without it, to whether this returns false.
 bool triangleObbCastInterval(const std::array<Eigen::Vector3d, 3>& tri, const Obb& moving, const Eigen::Vector3d& u,
                              double max_s, double slack, double* s_lo, double* s_hi,
                              const Eigen::Vector3d* inner_half = nullptr, bool* inner_apart = nullptr);
@@ -354,13 +355,15 @@ using NearestLeafFn = FunctionRef<double(int piece_a, int piece_b, double best)>
 /// pieces inside them, the larger of two (less kBvhSlackRel of their
 /// coordinates' magnitude): the gap between their bounding spheres, |c_a -
 /// c_b| - r_a - r_b (apart: the pieces are at least that far; overlapping:
-/// translating one by r_a + r_b - |c_a - c_b| along the centres' line
-/// separates the spheres, so the depth is at most that), and the same of a's
+/// translating one by r_a + r_b - |c_a - c_b| along the centres' line, or
+/// any line when they coincide, separates the spheres, so the depth is at
+/// most that), and the same of a's
 /// axis-aligned box and the box around b's posed oriented box (apart: their
 /// distance; overlapping: minus their smallest overlap along an axis, a
 /// translation that separates them). A pair whose bound is not below the best value so
 /// far (at first `upper`, which may be +infinity) is pruned; leaf is called
-/// with best = that value. Returns the smallest leaf value below `upper`.
+/// with best = that value, and may run another traversal (nearestPair
+/// included). Returns the smallest leaf value below `upper`.
 /// Throws InvalidInputError for an X_AB with a non-finite entry or a NaN
 /// upper.
 NearestHit nearestPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, NearestLeafFn leaf,

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mddual/generators.h"
+#include "mddual/planning/scene_distance.h"
 #include "test_support.h"
 
 namespace mddual::planning {
@@ -477,6 +478,13 @@ void expectSameAnswers(const examples::ExampleScene& scene, const MddScene& upda
     ASSERT_EQ(updated.collides(X), hit) << where << " state " << k;
     ++stats->states;
     stats->colliding += hit;
+    // Clearance (nearestPair over the static tree, its skipped leaves and
+    // the overflow tree): the same minimum over the same pairs.
+    const SceneDistance da = sceneDistance(updated, X);
+    const SceneDistance db = sceneDistance(rebuilt, X);
+    ASSERT_EQ(da.distance, db.distance) << where << " clearance " << k;
+    ASSERT_GE(da.world_piece, 0) << where << " clearance " << k;
+    EXPECT_EQ(hit, da.distance <= 0.0) << where << " clearance " << k;
 
     Eigen::Vector3d v = 0.3 * extent * generators::randomUnitVector(rng);
     if (scene.kind == SpaceKind::kSE2 || scene.kind == SpaceKind::kR2) v.z() = 0.0;

@@ -2,7 +2,8 @@
 // the smallest mddual::distance() over every (robot piece, world piece) pair,
 // found by a branch and bound of the scene's hierarchies (mddual::nearestPair
 // on the world's trees and the robot's: MddScene::worldTreeAt, robotTree),
-// whose spheres prune every node pair that cannot beat the best pair so far.
+// whose spheres and boxes prune every node pair that cannot beat the best
+// pair so far.
 // MddStateValidityChecker::clearance() is this at the state's pose.
 #pragma once
 

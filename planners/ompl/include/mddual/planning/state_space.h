@@ -133,8 +133,9 @@ class PlanningSpace {
   static PlanningSpacePtr make(SpaceKind kind, const Eigen::AlignedBox3d& bounds, double z = 0.0,
                                const Eigen::Quaterniond& q_WR = Eigen::Quaterniond::Identity());
   /// Wraps a state space the user made (layouts: file comment); stateSpace()
-  /// is then `space` itself. bounds() are its pose part's position bounds (z
-  /// extent [z, z] for kR2, [0, 0] for kSE2).
+  /// is then `space` itself, whose layout must not change afterwards (the
+  /// pose part's index and the rotation components are found here, once). bounds() are its pose part's position bounds
+  /// (z extent [z, z] for kR2, [0, 0] for kSE2).
   static PlanningSpacePtr wrap(const ompl::base::StateSpacePtr& space,
                                const SpaceWrapOptions& options = SpaceWrapOptions());
 

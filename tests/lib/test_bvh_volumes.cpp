@@ -196,6 +196,16 @@ TEST(Bvh, SweptSphereAgainstABoxIsSoundAndSeparatesOnEveryFaceAxis) {
   EXPECT_GT(meets_count, 600);
 }
 
+/// The box of the world axes about the triangle's centroid that holds it
+/// (what the traversals tested a triangle leaf by before the triangle tests).
+Obb boxAround(const std::array<Eigen::Vector3d, 3>& tri) {
+  Obb box;
+  box.centre_F = (tri[0] + tri[1] + tri[2]) / 3.0;
+  box.half = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& v : tri) box.half = box.half.cwiseMax((v - box.centre_F).cwiseAbs());
+  return box;
+}
+
 TEST(Bvh, TriangleAgainstABoxAgreesWithTheCore) {
   // triangleObbApart (no slack) against the core's intersect on the
   // triangle and the box's corners as polytopes; triangles of every shape
@@ -231,10 +241,7 @@ TEST(Bvh, TriangleAgainstABoxAgreesWithTheCore) {
     EXPECT_EQ(apart, !intersect(in).intersecting) << repro.str();
     ++(apart ? apart_count : meets_count);
     // The triangle's own box (what the traversal tested before): apart less often.
-    Obb tri_box;
-    tri_box.centre_F = (tri[0] + tri[1] + tri[2]) / 3.0;
-    tri_box.half = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& v : tri) tri_box.half = tri_box.half.cwiseMax((v - tri_box.centre_F).cwiseAbs());
+    const Obb tri_box = boxAround(tri);
     if (apart && !obbsDisjoint(tri_box, box, 0.0)) ++box_test_misses;
     if (!apart) {
       EXPECT_FALSE(obbsDisjoint(tri_box, box, 0.0)) << repro.str();
@@ -342,10 +349,7 @@ TEST(Bvh, TriangleCastIsTheStaticTriangleTestAtEveryTime) {
     }
     // The triangle's own box cast (what the traversals tested before): it
     // never clears a cast the triangle meets, and meets some it clears.
-    Obb tri_box;
-    tri_box.centre_F = (tri[0] + tri[1] + tri[2]) / 3.0;
-    tri_box.half = Eigen::Vector3d::Zero();
-    for (const Eigen::Vector3d& v : tri) tri_box.half = tri_box.half.cwiseMax((v - tri_box.centre_F).cwiseAbs());
+    const Obb tri_box = boxAround(tri);
     double box_lo = 0, box_hi = 0;
     const bool box_meets = obbCastInterval(tri_box, moving, u, max_s, slack, &box_lo, &box_hi);
     if (meets) {

@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfcl-dev libccd-dev libbullet-dev
   libompl-dev ompl-demos liburdfdom-dev libassimp-dev
+  libyaml-cpp-dev libtinyxml2-dev liborocos-kdl-dev libkdl-parser-dev
   libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   python3 python3-matplotlib
   python3-dev python3-numpy python3-pytest pybind11-dev python3-pybind11

@@ -454,6 +454,16 @@ void saveWarm(const Simplex& s, DistanceWarmStart* warm) {
 }  // namespace
 }  // namespace detail
 
+double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm) {
+  const detail::PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, "separationLowerBound");
+  DistanceStats stats;
+  const detail::GjkOutcome g = detail::runGjk(pair, Eigen::Vector3d::Zero(), warm, &stats);
+  detail::saveWarm(g.simplex, warm);
+  if (g.contact || !(g.upper > pair.touchTolerance())) return 0.0;
+  // g.lower is certified whether or not GJK closed its gap.
+  return std::max(0.0, std::min(g.lower, g.upper));
+}
+
 DistanceResult distance(const DistanceInput& input, DistanceWarmStart* warm) {
   const detail::PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, "distance");
   DistanceResult r;

@@ -97,4 +97,13 @@ struct DistanceWarmStart {
 /// Separation distance of A and B (see the file comment and DistanceResult).
 DistanceResult distance(const DistanceInput& input, DistanceWarmStart* warm = nullptr);
 
+/// A lower bound of the separation distance of A and B, for callers that only
+/// need to know how far apart they at least are (certified motion checks):
+/// GJK's certified support-function bound (a point of M is at most
+/// kDistanceGapRel * L farther), or 0 when the bodies meet within the touch
+/// tolerance (no depth is computed: far cheaper than distance() on
+/// overlapping pairs). Never above the true distance. Errors and thread
+/// safety as distance().
+double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm = nullptr);
+
 }  // namespace mddual

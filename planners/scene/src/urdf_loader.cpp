@@ -10,7 +10,9 @@
 #include <string>
 
 #include "mddual/scene/loaders.h"
+#include "mddual/scene/robot_model.h"
 #include "scene_detail.h"
+#include "urdf_detail.h"
 
 namespace mddual::scene::detail {
 namespace {
@@ -46,8 +48,9 @@ std::mutex& parseMutex() {
 /// more NULs every such step still lands on a NUL inside the string.
 constexpr std::size_t kXmlParserPadding = 4;
 
-/// `xml` is the text of `file` (read once, by requireShallowXml).
-urdf::ModelInterfaceSharedPtr parse(const std::filesystem::path& file, std::string xml) {
+}  // namespace
+
+urdf::ModelInterfaceSharedPtr parseUrdf(const std::filesystem::path& file, std::string xml) {
   xml.append(kXmlParserPadding, '\0');
   std::lock_guard<std::mutex> lock(parseMutex());
   CaptureHandler capture;
@@ -82,32 +85,9 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
   return X;
 }
 
-/// A mesh filename resolved against the URDF's folder; file:// is stripped,
-/// package:// and other URI schemes are refused.
-std::filesystem::path meshPath(const std::string& filename, const std::filesystem::path& urdf_dir) {
-  if (filename.empty()) throw SceneError("mesh without a filename");
-  std::string name = filename;
-  const std::string file_scheme = "file://";
-  if (name.rfind(file_scheme, 0) == 0) {
-    name = name.substr(file_scheme.size());
-  } else if (name.rfind("package://", 0) == 0) {
-    throw SceneError("mesh " + quote(filename) + ": package:// URIs are not supported (give a path relative to " +
-                     "the URDF's folder, or a file:// URI)");
-  } else {
-    const std::size_t colon = name.find("://");
-    if (colon != std::string::npos) {
-      throw SceneError("mesh " + quote(filename) + ": URI scheme " + quote(name.substr(0, colon)) +
-                       " is not supported");
-    }
-  }
-  std::filesystem::path p(name);
-  return p.is_absolute() ? p : urdf_dir / p;
-}
-
-/// Pieces of one collision element, in the root frame; X_RL is the link's pose.
-void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_RL,
-                  const std::filesystem::path& urdf_dir, const LoadOptions& options, const std::string& where,
-                  std::vector<Piece>* out, std::vector<std::string>* warnings, MeshCounts* counts) {
+void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_RL, const MeshSearch& search,
+                  const LoadOptions& options, const std::string& where, std::vector<Piece>* out,
+                  std::vector<std::string>* warnings, MeshCounts* counts) {
   if (!collision.geometry) throw SceneError(where + ": no geometry");
   const Eigen::Isometry3d X_RG = X_RL * toIsometry(collision.origin);
   const double tol = options.primitive_tolerance;
@@ -131,7 +111,7 @@ void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_R
       const auto& mesh = static_cast<const urdf::Mesh&>(*collision.geometry);
       std::filesystem::path path;
       try {
-        path = meshPath(mesh.filename, urdf_dir);
+        path = resolveMeshPath(mesh.filename, search.urdf, search.package_path, search.use_environment);
       } catch (const SceneError& e) {
         throw SceneError(where + ": " + e.what());
       }
@@ -157,8 +137,6 @@ void addCollision(const urdf::Collision& collision, const Eigen::Isometry3d& X_R
   throw SceneError(where + ": unsupported geometry type");
 }
 
-}  // namespace
-
 bool isUrdf(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
@@ -171,11 +149,11 @@ std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptio
   requireFile(file);
   requirePositiveTolerance(options.primitive_tolerance, display(file));
   // urdfdom's XML parser recurses once per nesting level: checked first.
-  const urdf::ModelInterfaceSharedPtr model = parse(file, requireShallowXml(file));
+  const urdf::ModelInterfaceSharedPtr model = parseUrdf(file, requireShallowXml(file));
   if (robot_name != nullptr) *robot_name = model->getName();
   const urdf::LinkConstSharedPtr root = model->getRoot();
   if (!root) throw SceneError(display(file) + ": no root link");
-  const std::filesystem::path dir = file.parent_path();
+  const MeshSearch search{file, {}, true};
   const std::string name = file.filename().string();
 
   // Depth-first from the root, composing joint origins (joints at zero).
@@ -187,7 +165,7 @@ std::vector<Piece> urdfPieces(const std::filesystem::path& file, const LoadOptio
     for (std::size_t i = 0; i < link->collision_array.size(); ++i) {
       const std::string where = name + ": link " + quote(link->name) + ", collision " + std::to_string(i);
       if (!link->collision_array[i]) continue;
-      addCollision(*link->collision_array[i], X_RL, dir, options, where, &pieces, warnings, counts);
+      addCollision(*link->collision_array[i], X_RL, search, options, where, &pieces, warnings, counts);
     }
     for (const urdf::JointSharedPtr& joint : link->child_joints) {
       const urdf::LinkConstSharedPtr child = model->getLink(joint->child_link_name);

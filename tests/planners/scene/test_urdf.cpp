@@ -252,9 +252,14 @@ TEST(UrdfErrors, PackageUri) {
     <collision><geometry><box size="1 1 1"/></geometry></collision>
     <collision><geometry><box size="1 1 1"/></geometry></collision>
     <collision><geometry><mesh filename="package://x/y.stl"/></geometry></collision></link></robot>)");
-  expectSceneError(
-      [&] { loadBody(file); },
-      {"robot.urdf: link 'arm', collision 2: mesh 'package://x/y.stl': package:// URIs are not supported"});
+  // Searched in the URDF's folder and its parents, then MDDUAL_PACKAGE_PATH:
+  // a mesh found nowhere names every place tried.
+  expectSceneError([&] { loadBody(file); },
+                   {"robot.urdf: link 'arm', collision 2: mesh 'package://x/y.stl' not found; searched:",
+                    (dir.path() / "x" / "y.stl").string(), "--package-path"});
+  // The same mesh in a folder named after the package is found.
+  dir.write("x/y.stl", testing::asciiStl(testing::boxTriangles(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones())));
+  EXPECT_EQ(loadBody(file).pieces().size(), 3u);
 }
 
 TEST(UrdfErrors, OtherUriScheme) {
@@ -268,7 +273,9 @@ TEST(UrdfErrors, MissingMesh) {
   TempDir dir;
   const auto file = dir.write("robot.urdf", R"(<robot name="r"><link name="arm">
     <collision><geometry><mesh filename="gone.stl"/></geometry></collision></link></robot>)");
-  expectSceneError([&] { loadBody(file); }, {"robot.urdf: link 'arm', collision 0: mesh 'gone.stl'", "file not found"});
+  expectSceneError([&] { loadBody(file); },
+                   {"robot.urdf: link 'arm', collision 0: mesh 'gone.stl' not found; searched:",
+                    (dir.path() / "gone.stl").string()});
 }
 
 TEST(UrdfErrors, ZeroSizedBox) {

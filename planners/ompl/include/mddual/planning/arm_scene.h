@@ -1,0 +1,156 @@
+// ArmScene: collision queries for an articulated robot (scene::RobotModel)
+// in a static world, at the level of joint configurations (no OMPL types):
+// exact state checks, clearance, and certified motion checks of joint-space
+// edges. The OMPL layer (arm_space.h) is a thin layer over it.
+//
+// Frames: W is the world frame; the robot's root link frame B sits at X_WB;
+// a link's pieces are in its own frame L, at X_WL = X_WB X_BL(q).
+//
+// Pairs checked (touching counts as collision, as everywhere in mddual):
+// every link with collision pieces against the world, and every pair of
+// such links that the SelfCollisionFilter does not skip.
+//
+// Contract of checkEdge (the proof: docs/design/arms.md). The edge is
+// q(t) = q0 + t (q1 - q0), t in [0, 1], in variable space (OMPL's
+// interpolation of the joints, continuous joints unwrapped by the caller).
+//   - Certified: `collides` is false only when no checked pair touches at
+//     any t in [0, 1].
+//   - `fraction` is a lower bound of the first contact: every state at
+//     t < fraction is free (what OMPL's lastValid needs).
+//   - A state whose clearance is below ArmSceneOptions::contact_distance, or
+//     an interval still unresolved at max_depth halvings, counts as a
+//     contact: a false alarm at worst, never a miss. `state_collides` says
+//     whether the contact found is a true collision of a state.
+//
+// Thread safety: const methods may run from any number of threads at once.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mddual/bvh.h"
+#include "mddual/planning/mdd_scene.h"
+#include "mddual/scene/robot_model.h"
+#include "mddual/scene/scene.h"
+#include "mddual/scene/srdf.h"
+
+namespace mddual::planning {
+
+/// Options of an ArmScene.
+struct ArmSceneOptions {
+  /// Clearance (world units) below which a state met by the certified edge
+  /// check counts as a contact. Smaller values refine grazing edges deeper
+  /// (about log2(motion / contact_distance) halvings) and refuse fewer of
+  /// them. 1e-5: far below any planning resolution, above round-off at the
+  /// sizes of robot arms (metres).
+  double contact_distance = 1e-5;
+  /// Halvings of the edge after which an unresolved interval counts as a
+  /// contact (a false alarm bound, never a miss).
+  int max_depth = 40;
+};
+
+/// The pair of a contact: a link and either a world piece or another link.
+struct ArmContact {
+  int link = -1;
+  int world_piece = -1;  ///< index into World::pieces(), or -1
+  int other_link = -1;   ///< self-collision: the other link, or -1
+};
+
+/// Result of ArmScene::checkEdge().
+struct ArmEdgeResult {
+  bool collides = false;
+  /// Lower bound of the first contact (see the file comment); +infinity when
+  /// free. With EdgeQuery::kValidity only `collides` is meaningful.
+  double fraction = std::numeric_limits<double>::infinity();
+  /// The contact is a state of the edge that collides (else a state within
+  /// contact_distance, or an interval left unresolved at max_depth).
+  bool state_collides = false;
+  ArmContact contact;
+  int distance_queries = 0;  ///< pair bound queries (one link or link pair at one time)
+  int intervals = 0;         ///< time intervals visited
+};
+
+/// See the file comment.
+class ArmScene {
+ public:
+  /// Throws InvalidInputError for a null model or world, a filter of another
+  /// size than the model, a non-finite X_WB or bad options.
+  ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_ptr<const scene::World> world,
+           scene::SelfCollisionFilter filter, const Eigen::Isometry3d& X_WB = Eigen::Isometry3d::Identity(),
+           const ArmSceneOptions& options = ArmSceneOptions());
+
+  const scene::RobotModel& model() const { return *model_; }
+  const scene::World& world() const { return *world_; }
+  const scene::SelfCollisionFilter& filter() const { return filter_; }
+  const Eigen::Isometry3d& baseInWorld() const { return X_WB_; }
+  const ArmSceneOptions& options() const { return options_; }
+  /// The link pairs the self check tests (k < l).
+  const std::vector<std::pair<int, int>>& selfPairs() const { return self_pairs_; }
+
+  /// Whether configuration q (model().numVariables() values) collides:
+  /// exact up to the core's touching tolerance. `which` receives the pair.
+  bool collides(const double* q, ArmContact* which = nullptr) const;
+  /// Smallest signed distance over the checked pairs at q (negative: the
+  /// deepest penetration depth among overlapping pairs found), +infinity
+  /// when no pair exists.
+  double clearance(const double* q, ArmContact* which = nullptr) const;
+  /// The certified motion check of the edge from q0 to q1 (see the file
+  /// comment); `query` as MddScene's: kValidity stops at any contact,
+  /// kFirstContact and kLastValid return the lower bound of the first one.
+  ArmEdgeResult checkEdge(const double* q0, const double* q1, EdgeQuery query) const;
+
+  /// Link poses X_WL at q.
+  void linkPoses(const double* q, std::vector<Eigen::Isometry3d>* X_WL) const;
+  /// Bound of how fast (world units per unit of t) the distance of pair p
+  /// (pairs(): world pairs first, then self pairs) can change on an edge
+  /// with variable changes dq (see docs/design/arms.md).
+  double pairRate(int p, const double* dq) const;
+  /// Number of pairs: links with pieces against the world (when the world
+  /// has pieces), then selfPairs().
+  int numPairs() const { return static_cast<int>(pairs_.size()); }
+
+ private:
+  /// One checked pair: link `link` against the world (other = -1) or link `other`.
+  struct Pair {
+    int link = -1;
+    int other = -1;
+    /// Per variable v: how far (world units per unit change of v) a point of
+    /// the pair moves relative to the other side, at most.
+    std::vector<double> reach;
+  };
+  /// The two sides of a pair at link poses X_WL: side A (the world, or link
+  /// `link`) and side B (link `link`, or `other`) posed at X_AB in A's frame.
+  struct PairView {
+    const std::vector<scene::Piece>* a;
+    const std::vector<scene::Piece>* b;
+    const Bvh* a_tree;
+    const Bvh* b_tree;
+    Eigen::Isometry3d X_AB;
+  };
+  PairView view(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL) const;
+  /// Lower bound of pair p's distance at link poses X_WL, searched below
+  /// `upper`: +infinity when every piece pair is at least `upper` apart.
+  double pairBound(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, double upper) const;
+  bool pairCollides(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const;
+  double pairDistance(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const;
+  /// checkEdge's search for the first contact of pair p on [a, b], every
+  /// state before a being free; true when it found one (recorded in w).
+  struct EdgeWork;
+  bool certify(EdgeWork& w, int p, double a, double b, int depth) const;
+
+  std::shared_ptr<const scene::RobotModel> model_;
+  std::shared_ptr<const scene::World> world_;
+  scene::SelfCollisionFilter filter_;
+  Eigen::Isometry3d X_WB_;
+  ArmSceneOptions options_;
+  Bvh world_tree_;
+  std::vector<Bvh> link_trees_;  ///< per link, frame L (empty for links without pieces)
+  std::vector<std::pair<int, int>> self_pairs_;
+  std::vector<Pair> pairs_;
+  double scale_ = 1.0;  ///< size of the robot and world (round-off slack)
+};
+
+}  // namespace mddual::planning

@@ -1,0 +1,275 @@
+// ArmScene (arm_scene.h): state checks, clearance and the certified motion
+// check of joint-space edges. The argument: docs/design/arms.md.
+#include "mddual/planning/arm_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mddual/distance.h"
+#include "mddual/error.h"
+#include "mddual/query.h"
+
+namespace mddual::planning {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Relative growth of a pair's motion bound and of its free window: covers
+/// the round-off of forward kinematics and of the bound's own sums.
+constexpr double kRateSlackRel = 1e-9;
+/// Shortest interval (fraction of the edge) the recursion splits.
+constexpr double kMinInterval = 1e-12;
+
+std::vector<const ConvexPolytope*> polytopesOf(const std::vector<scene::Piece>& pieces) {
+  std::vector<const ConvexPolytope*> out;
+  out.reserve(pieces.size());
+  for (const scene::Piece& p : pieces) out.push_back(&p.polytope);
+  return out;
+}
+
+}  // namespace
+
+/// What one checkEdge call carries through the recursion.
+struct ArmScene::EdgeWork {
+  const double* q0 = nullptr;
+  std::vector<double> dq;
+  EdgeQuery query = EdgeQuery::kValidity;
+  std::vector<double> q;
+  std::vector<Eigen::Isometry3d> X_WL;
+  ArmEdgeResult* result = nullptr;
+  /// Search only below this fraction (the best first contact so far).
+  double limit = kInf;
+
+  void poseAt(const ArmScene& scene, double t) {
+    for (std::size_t v = 0; v < dq.size(); ++v) q[v] = q0[v] + t * dq[v];
+    scene.linkPoses(q.data(), &X_WL);
+  }
+};
+
+ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_ptr<const scene::World> world,
+                   scene::SelfCollisionFilter filter, const Eigen::Isometry3d& X_WB, const ArmSceneOptions& options)
+    : model_(std::move(model)), world_(std::move(world)), filter_(std::move(filter)), X_WB_(X_WB), options_(options) {
+  if (!model_) throw InvalidInputError("ArmScene: null robot model");
+  if (!world_) throw InvalidInputError("ArmScene: null world");
+  if (filter_.numLinks() != model_->numLinks()) {
+    throw InvalidInputError("ArmScene: the self-collision filter has " + std::to_string(filter_.numLinks()) +
+                            " links, the robot " + std::to_string(model_->numLinks()));
+  }
+  if (!X_WB_.matrix().allFinite()) throw InvalidInputError("ArmScene: the base pose X_WB is not finite");
+  if (!(options_.contact_distance > 0.0) || !std::isfinite(options_.contact_distance)) {
+    throw InvalidInputError("ArmScene: contact_distance must be a finite number > 0");
+  }
+  if (options_.max_depth < 1 || options_.max_depth > 200) {
+    throw InvalidInputError("ArmScene: max_depth must be in [1, 200]");
+  }
+  world_tree_ = Bvh::fromPolytopes(polytopesOf(world_->pieces()));
+  const int nl = model_->numLinks();
+  link_trees_.resize(static_cast<std::size_t>(nl));
+  double reach = 0.0;
+  for (int k = 0; k < nl; ++k) {
+    const scene::Link& link = model_->link(k);
+    if (!link.pieces.empty()) link_trees_[static_cast<std::size_t>(k)] = Bvh::fromPolytopes(polytopesOf(link.pieces));
+    if (link.parent_joint >= 0) reach = std::max(reach, model_->reach(model_->jointPath(k).front(), k));
+  }
+  scale_ = std::max({1.0, reach, world_->box().isEmpty() ? 0.0 : world_->box().diagonal().norm()});
+
+  const int nv = model_->numVariables();
+  // Per variable, how far the joints it drives on `joints` can move link k.
+  auto addReach = [&](Pair* pair, const std::vector<int>& joints, int k) {
+    for (int j : joints) {
+      const scene::Joint& joint = model_->joint(j);
+      if (!joint.moves()) continue;
+      const double r = joint.type == scene::JointType::kPrismatic ? 1.0 : model_->reach(j, k);
+      pair->reach[static_cast<std::size_t>(joint.variable)] += std::abs(joint.multiplier) * r;
+    }
+  };
+  if (!world_->pieces().empty()) {
+    for (int k = 0; k < nl; ++k) {
+      if (model_->link(k).pieces.empty()) continue;
+      Pair pair;
+      pair.link = k;
+      pair.reach.assign(static_cast<std::size_t>(nv), 0.0);
+      addReach(&pair, model_->jointPath(k), k);
+      pairs_.push_back(std::move(pair));
+    }
+  }
+  for (int k = 0; k < nl; ++k) {
+    for (int l = k + 1; l < nl; ++l) {
+      if (model_->link(k).pieces.empty() || model_->link(l).pieces.empty() || filter_.allowed(k, l)) continue;
+      self_pairs_.emplace_back(k, l);
+      // Only the joints below the common ancestor move k and l apart.
+      const std::size_t common = model_->jointPath(model_->commonAncestor(k, l)).size();
+      Pair pair;
+      pair.link = k;
+      pair.other = l;
+      pair.reach.assign(static_cast<std::size_t>(nv), 0.0);
+      const std::vector<int> path_k = model_->jointPath(k);
+      const std::vector<int> path_l = model_->jointPath(l);
+      addReach(&pair, std::vector<int>(path_k.begin() + static_cast<std::ptrdiff_t>(common), path_k.end()), k);
+      addReach(&pair, std::vector<int>(path_l.begin() + static_cast<std::ptrdiff_t>(common), path_l.end()), l);
+      pairs_.push_back(std::move(pair));
+    }
+  }
+}
+
+void ArmScene::linkPoses(const double* q, std::vector<Eigen::Isometry3d>* X_WL) const {
+  model_->linkPoses(q, X_WL);
+  for (Eigen::Isometry3d& X : *X_WL) X = X_WB_ * X;
+}
+
+double ArmScene::pairRate(int p, const double* dq) const {
+  const Pair& pair = pairs_[static_cast<std::size_t>(p)];
+  double rate = 0.0;
+  for (std::size_t v = 0; v < pair.reach.size(); ++v) rate += std::abs(dq[v]) * pair.reach[v];
+  return rate;
+}
+
+ArmScene::PairView ArmScene::view(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL) const {
+  const std::size_t k = static_cast<std::size_t>(p.link);
+  if (p.other < 0) return {&world_->pieces(), &model_->link(p.link).pieces, &world_tree_, &link_trees_[k], X_WL[k]};
+  const std::size_t l = static_cast<std::size_t>(p.other);
+  return {&model_->link(p.link).pieces, &model_->link(p.other).pieces, &link_trees_[k], &link_trees_[l],
+          X_WL[k].inverse() * X_WL[l]};
+}
+
+double ArmScene::pairBound(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, double upper) const {
+  const PairView v = view(p, X_WL);
+  const NearestHit hit = nearestPair(
+      *v.a_tree, *v.b_tree, v.X_AB,
+      [&](int i, int j, double /*best*/) {
+        DistanceInput in;
+        in.a = &(*v.a)[static_cast<std::size_t>(i)].polytope;
+        in.b = &(*v.b)[static_cast<std::size_t>(j)].polytope;
+        in.X_WB = v.X_AB;
+        return separationLowerBound(in);
+      },
+      upper);
+  return hit.value;
+}
+
+bool ArmScene::pairCollides(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const {
+  const PairView v = view(p, X_WL);
+  bool hit = false;
+  forEachOverlappingPair(*v.a_tree, *v.b_tree, v.X_AB, 0.0, [&](int i, int j) {
+    IntersectInput in;
+    in.a = &(*v.a)[static_cast<std::size_t>(i)].polytope;
+    in.b = &(*v.b)[static_cast<std::size_t>(j)].polytope;
+    in.X_WB = v.X_AB;
+    if (!intersect(in).intersecting) return true;
+    hit = true;
+    if (which != nullptr) *which = {p.link, p.other < 0 ? i : -1, p.other};
+    return false;
+  });
+  return hit;
+}
+
+double ArmScene::pairDistance(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const {
+  const PairView v = view(p, X_WL);
+  const NearestHit hit = nearestPair(*v.a_tree, *v.b_tree, v.X_AB, [&](int i, int j, double /*best*/) {
+    DistanceInput in;
+    in.a = &(*v.a)[static_cast<std::size_t>(i)].polytope;
+    in.b = &(*v.b)[static_cast<std::size_t>(j)].polytope;
+    in.X_WB = v.X_AB;
+    return distance(in).distance;
+  });
+  if (which != nullptr && hit.piece_a >= 0) *which = {p.link, p.other < 0 ? hit.piece_a : -1, p.other};
+  return hit.value;
+}
+
+bool ArmScene::collides(const double* q, ArmContact* which) const {
+  std::vector<Eigen::Isometry3d> X_WL;
+  linkPoses(q, &X_WL);
+  for (const Pair& p : pairs_) {
+    if (pairCollides(p, X_WL, which)) return true;
+  }
+  return false;
+}
+
+double ArmScene::clearance(const double* q, ArmContact* which) const {
+  std::vector<Eigen::Isometry3d> X_WL;
+  linkPoses(q, &X_WL);
+  double best = kInf;
+  for (const Pair& p : pairs_) {
+    ArmContact c;
+    const double d = pairDistance(p, X_WL, &c);
+    if (d < best) {
+      best = d;
+      if (which != nullptr) *which = c;
+    }
+  }
+  return best;
+}
+
+bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const {
+  const Pair& pair = pairs_[static_cast<std::size_t>(p)];
+  if (a >= w.limit) return false;
+  ArmEdgeResult& r = *w.result;
+  ++r.intervals;
+  const double rate = pairRate(p, w.dq.data()) * (1.0 + kRateSlackRel);
+  auto contactAt = [&](double t, bool state) {
+    r.collides = true;
+    if (t < r.fraction) {
+      r.fraction = t;
+      r.state_collides = state;
+      r.contact = {pair.link, -1, pair.other};
+    }
+    w.limit = std::min(w.limit, t);
+    return true;
+  };
+  if (depth > options_.max_depth || b - a < kMinInterval) return contactAt(a, false);
+  const double tm = 0.5 * (a + b);
+  w.poseAt(*this, tm);
+  const double e = 0.5 * (b - a) * rate + kRateSlackRel * scale_ * 1e-3;
+  const double upper = std::max(e, options_.contact_distance);
+  ++r.distance_queries;
+  const double d = pairBound(pair, w.X_WL, upper);
+  if (d >= upper) return false;  // free on all of [a, b]
+  if (d <= options_.contact_distance) {
+    // A contact (or near-contact) at tm. The first one: certify [a, tm) first.
+    const bool state = pairCollides(pair, w.X_WL, nullptr);
+    if (w.query == EdgeQuery::kValidity || rate == 0.0) return contactAt(rate == 0.0 ? a : tm, state);
+    if (certify(w, p, a, tm, depth + 1)) return true;
+    return contactAt(tm, state);
+  }
+  // Free within d / rate of tm: the distance changes at most `rate` per unit t.
+  const double window = d / rate * (1.0 - kRateSlackRel);
+  if (tm - window > a && certify(w, p, a, tm - window, depth + 1)) return true;
+  if (tm + window < b && certify(w, p, tm + window, b, depth + 1)) return true;
+  return false;
+}
+
+ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery query) const {
+  const int nv = model_->numVariables();
+  ArmEdgeResult result;
+  EdgeWork w;
+  w.q0 = q0;
+  w.dq.resize(static_cast<std::size_t>(nv));
+  for (int v = 0; v < nv; ++v) w.dq[static_cast<std::size_t>(v)] = q1[v] - q0[v];
+  for (int v = 0; v < nv; ++v) {
+    if (!std::isfinite(q0[v]) || !std::isfinite(q1[v])) {
+      throw InvalidInputError("ArmScene::checkEdge: variable " + model_->variableName(v) + " is not finite");
+    }
+  }
+  w.q.resize(static_cast<std::size_t>(nv));
+  w.query = query;
+  w.result = &result;
+  if (query == EdgeQuery::kValidity) {
+    // The end state settles most colliding edges at the cost of one state check.
+    ArmContact which;
+    if (collides(q1, &which)) {
+      result.collides = true;
+      result.fraction = 1.0;
+      result.state_collides = true;
+      result.contact = which;
+      return result;
+    }
+  }
+  // Pair by pair; with a first contact, each pair searches only before the
+  // best contact so far (EdgeWork::limit).
+  for (int p = 0; p < numPairs(); ++p) {
+    certify(w, p, 0.0, 1.0, 0);
+    if (result.collides && query == EdgeQuery::kValidity) break;
+  }
+  return result;
+}
+
+}  // namespace mddual::planning

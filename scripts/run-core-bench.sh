@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Core speed/accuracy benchmark, full MDD-DUAL paper protocol (ALGORITHMS.md
+# Core speed/accuracy benchmark, full MDD-DUAL paper protocol (docs/algorithms.md
 # section 5): builds mddual_bench_core (Release) in build-bench/, runs the ten
 # pairs with 40 orientations x 21 placements x 40 directions = 33,600 queries
 # per pair (ours cold/warm mdd and toi, Bullet and FCL casts, 3 timing passes),

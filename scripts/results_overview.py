@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
-"""The README's benchmark overview, from the full runs' databases.
+"""The benchmark overview of docs/results/overview.md, from the full runs' databases.
 
 Reads out/bench-full/<config>/bench.db (made by scripts/run-full-bench.sh via
 `mddual bench`), summarises them with scripts/bench_report.py, and writes one
 compact table (per config and planner: success, median time and invalid
 solutions of each checker, MDD's time over FCL discrete's, and the MDD and
-FCL checkers' median time over the runs that returned a solution, valid or not), the issue's
+FCL checkers' median time over the runs that returned a solution, valid or not), the
 targets with their verdicts as measured, and how often the two halves of the
 strict verification agreed. The text replaces what lies between the markers
-`<!-- results:begin -->` and `<!-- results:end -->` in README.md (--readme), or
-goes to standard output.
+`<!-- results:begin -->` and `<!-- results:end -->` in docs/results/overview.md
+(--readme names another file; --readme - prints to standard output).
 
-    scripts/results_overview.py [--bench DIR] [--readme README.md]
+    scripts/results_overview.py [--bench DIR] [--readme FILE|-]
 """
 
 import argparse
@@ -91,9 +91,8 @@ def overview(bench_dir):
                     c, p, bench_report.fmt(mdd["median_time"]), bench_report.fmt(fcl["median_time"]),
                     bench_report.fmt(mdd["ratio"], 2), 100 * mdd["success"], 100 * fcl["success"],
                     "met" if met else "missed"))
-    text = ["Made by `scripts/results_overview.py --readme README.md` from the databases of "
-            "`scripts/run-full-bench.sh` (per-config tables, commands and plots: "
-            "[docs/results/README.md](docs/results/README.md)).", ""]
+    text = ["Made by `scripts/results_overview.py` from the databases of `scripts/run-full-bench.sh` "
+            "(per-config tables, commands and plots: docs/results/README.md).", ""]
     text += lines + [""]
     text.append("Targets as measured:")
     text.append("")
@@ -113,12 +112,11 @@ def overview(bench_dir):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-full"))
-    parser.add_argument("--readme", help="replace the text between the results markers in this file")
+    parser.add_argument("--readme", default=readme_markers.default_target("overview.md"),
+                        help="replace the text between the results markers in this file (default: "
+                        "docs/results/overview.md; - prints)")
     args = parser.parse_args()
     text = overview(args.bench)
-    if not args.readme:
-        sys.stdout.write(text)
-        return
     readme_markers.replace_between(args.readme, BEGIN, END, text, "results_overview")
 
 

@@ -243,8 +243,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // large flat triangles has a thin box in a wide sphere). The box test
     // before N's box is posed: callgrind (RRT-Connect's recorded checks,
     // MDD's checkEdge) bugtrap -6.1%, twistycool -0.8%, the apartment +0.6%
-    // (its checks are mostly state checks; see the README's account for the
-    // variants tried).
+    // (its checks are mostly state checks; see docs/results/planning-speed.md for
+    // the variants tried).
     const auto sphereMisses = [&](const Eigen::Vector3d& c_W, double rs, const Eigen::Vector3d& dir_W, double len,
                                   const Eigen::Vector3d& v_W) {
       const double s = len > 0.0 ? std::clamp((M.centre - c_W).dot(dir_W), 0.0, len) : 0.0;

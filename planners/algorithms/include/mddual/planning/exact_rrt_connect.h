@@ -84,7 +84,7 @@
 // a rotation in place already kept stays), "rotate_first"
 // (1: the two-edge extension where the space allows it; 0, the default:
 // straight edges everywhere). Rotating first was the default for a while; it made the
-// planner about 10x slower on the SE(2) maze and the SE(3) cubicles (README,
+// planner about 10x slower on the SE(2) maze and the SE(3) cubicles (docs/planning.md,
 // "The benchmark"), so it is off.
 //
 // Why one step for min_progress: on a translation edge MDD-DUAL's validator
@@ -97,8 +97,8 @@
 // edge; with a threshold of 1e-6 of the maximum extent, as before, CONNECT
 // repeated that creep, one lastValid check each time. (OMPL's discrete
 // validator creeps little: its lastValid is a step before its first colliding
-// sample, near which the next extension samples.) Measured (README, the
-// mdd_rrtconnect paragraph of the mesh results; five mesh configs, two seeds,
+// sample, near which the next extension samples.) Measured (docs/results/mesh-history.md,
+// the mdd_rrtconnect paragraphs; five mesh configs, two seeds,
 // 10 runs each): the median fell by 1.3x to 4.5x in all 10 (config, seed)
 // groups. The space's longest valid segment (resolution x the sum of the
 // extents) as the step, tried first, is 6% to 21% longer than a pure
@@ -111,8 +111,8 @@
 // Why a probe four steps in: an edge blocked within its first few steps
 // gains little (at most the steps before its contact), and with MDD-DUAL's
 // validator its lastValid search is the dearest check the planner makes.
-// In a recorded bugtrap run (README, "What mdd_rrtconnect's lastValid
-// searches on bugtrap are spent on") 804 of the 1,240 searched blocked
+// In a recorded bugtrap run (docs/results/planning-speed.md, "What mdd_rrtconnect's
+// lastValid searches on bugtrap are spent on") 804 of the 1,240 searched blocked
 // rotating edges, though free one step in, returned less than a step (and
 // were dropped by min_progress) after 42% of the triples of all the run's
 // rotating searches (valid edges' included). One state test is meant to end
@@ -122,8 +122,8 @@
 // validator; with OMPL's discrete validator, which samples from the start,
 // it saves at most a few state tests of a blocked edge and repeats one of
 // every other. Measured with the MDD checkers on the
-// five mesh configs (README, "A probe before each extension's motion
-// check"; 20 runs, seeds 1 to 3): 4 steps gave lower medians than no probe
+// five mesh configs (docs/results/planning-speed.md, "A probe before each
+// extension's motion check"; 20 runs, seeds 1 to 3): 4 steps gave lower medians than no probe
 // in 13 of 15 (config, seed) groups (bugtrap 0.35 -> 0.215 s with seed 1,
 // the apartment 0.713 -> 0.251 s with seed 2; twistycool and the cubicles
 // slower with seed 1, 0.589 -> 0.663 s and 3.56 -> 3.94 ms); 2 and 3 steps

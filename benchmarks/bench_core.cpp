@@ -1,6 +1,6 @@
 // mddual_bench_core: speed and accuracy of mddual::mdd() / mddual::toi()
 // against the brute force and against Bullet's and FCL's convex casts, on the
-// MDD-DUAL paper's protocol (ALGORITHMS.md section 5; scene.h, measure.h).
+// MDD-DUAL paper's protocol (docs/algorithms.md section 5; scene.h, measure.h).
 //
 //   mddual_bench_core [--quick] [--pairs P1-P2,P3-P3 | --pair P1-P2]
 //                     [--orientations N] [--placements N] [--directions N]

@@ -48,7 +48,7 @@ std::vector<std::unique_ptr<ToiPeer>> makePeers(const ConvexPolytope& a, const C
 /// A short description of each peer's settings (for the JSON summary).
 std::string peerSettings(const std::string& name);
 
-// ---- Penetration depth peers (issue 5; bench_pd.cpp) ------------------------------
+// ---- Penetration depth peers (bench_pd.cpp) ---------------------------------------
 //
 //   fcl_mpr_libccd      fcl::collide, enable_contact, GST_LIBCCD: FCL 0.7 answers a
 //                       Convex-Convex contact with libccd's MPR penetration

@@ -1,9 +1,9 @@
-// The MDD-DUAL paper's benchmark protocol (ALGORITHMS.md section 5, paper
+// The MDD-DUAL paper's benchmark protocol (docs/algorithms.md section 5, paper
 // section VII): pairs of the polytopes P1..P6, random orientations, placements
 // of B at prescribed signed distances from A, random query directions, and the
 // exact reference answer of every query.
 //
-// The reference is the brute force of ALGORITHMS.md section 1 (hull of all
+// The reference is the brute force of docs/algorithms.md section 1 (hull of all
 // vertex differences, line clipped by every face plane): M0 = A - B is built
 // once per orientation with mddual::MinkowskiDifference::build, and a query
 // with B translated by v clips the line with the planes of M0 - v. That is the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Turns the JSON of mddual_bench_core into the README's Markdown tables.
+"""Turns the JSON of mddual_bench_core into the Markdown tables of docs/results/core.md.
 
     scripts/bench_core_table.py out/bench-core.json > out/bench-core.md
 

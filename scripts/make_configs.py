@@ -471,7 +471,7 @@ def twistycool(files):
              for y0, y1 in zip(tiles, tiles[1:]) for z0, z1 in zip(tiles, tiles[1:])]
     # The slot: 1.5 x 0.8125 m (the bar needs 0.88 m unturned). Its height sets
     # the difficulty; 0.8125 m was chosen by FCL discrete's success with
-    # KPIECE, near OMPL.app's Twistycool (40% of 15 s runs in issue 9): 2
+    # KPIECE, near OMPL.app's Twistycool (40% of 15 s runs in the starting measurement): 2
     # valid of 6 10 s runs here; with the 0.6875 m slot of earlier rounds it
     # found none in 10 runs, nor did any planner with MDD (README).
     slot_h = 0.8125

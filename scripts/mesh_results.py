@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's mesh-config results (issue 9), from `mddual bench` databases.
+"""The mesh-config results of docs/results/mesh.md, from `mddual bench` databases.
 
 Reads <bench>/<config>/bench.db for the mesh configs (bugtrap, twistycool,
 cubicles_mesh, apartment, maze_planar; made by scripts/run-mesh-bench.sh),
@@ -11,17 +11,17 @@ checkers (where it is small, a faster checker cannot make the planner much
 faster), median peak memory, and the median verification time per solved
 run, the checkers' time per motion check (their summed time over the summed
 motion checks of the group's runs: state checks included, as OMPL counts
-them), then the issue's targets with their verdicts as measured.
+them), then the targets with their verdicts as measured.
 The text replaces what lies between `<!-- mesh-results:begin -->` and
-`<!-- mesh-results:end -->` in README.md (--readme; --marker names other
-markers), or goes to standard output.
+`<!-- mesh-results:end -->` in docs/results/mesh.md (--readme names another
+file, --readme - prints to standard output; --marker names other markers).
 
 --repeats DIR reads DIR/<config>-<planner>/bench.db instead (one `mddual
 bench` run per group, e.g. 30 runs of the groups nearest the target) and
 writes one row per group with the verdict of each (markers mesh-repeats).
 
-    scripts/mesh_results.py [--bench out/bench-mesh] [--readme README.md] [--command TEXT]
-    scripts/mesh_results.py --repeats out/bench-check30 [--readme README.md] [--command TEXT]
+    scripts/mesh_results.py [--bench out/bench-mesh] [--readme FILE|-] [--command TEXT]
+    scripts/mesh_results.py --repeats out/bench-check30 [--readme FILE|-] [--command TEXT]
 """
 
 import argparse
@@ -99,7 +99,7 @@ def repeats(repeat_dir, command, marker="mesh-repeats"):
                 pair([mdd, fcl], lambda s: bench_report.fmt(s["solved_time"])),
                 pair([per_check(g) for g in group], lambda t: "%.3g" % t),
                 "met" if met else "**missed**"))
-    text = ["Made by `scripts/mesh_results.py --repeats DIR --readme README.md%s` from `%s`: "
+    text = ["Made by `scripts/mesh_results.py --repeats DIR%s` from `%s`: "
             "the target (median at most half of FCL's at the same or better success) met in %d of %d groups. "
             "`solved time` is the median over the runs that returned a path, valid or not (the planner's raw "
             "speed); `per motion check`, the checkers' summed time over the summed motion checks."
@@ -152,7 +152,7 @@ def overview(bench_dir, command, marker=MARKER):
                     overruns.append("%s %s %s: %.1f s for %g s" % (c, p, k, t, limit))
     if not found:
         raise SystemExit("mesh_results: no %s/<config>/bench.db (run scripts/run-mesh-bench.sh)" % bench_dir)
-    made_by = "scripts/mesh_results.py --readme README.md" + ("" if marker == MARKER else " --marker " + marker)
+    made_by = "scripts/mesh_results.py" + ("" if marker == MARKER else " --marker " + marker)
     text = ["Made by `%s` from `%s`. FCL is OMPL's discrete motion "
             "validator at the default resolution with FCL's collide(); every solution verified (exact MDD edge "
             "check + dense FCL check); a run without a verified solution counts at the time limit."
@@ -174,7 +174,9 @@ def overview(bench_dir, command, marker=MARKER):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-mesh"))
-    parser.add_argument("--readme", help="replace the text between the mesh-results markers in this file")
+    parser.add_argument("--readme", default=readme_markers.default_target("mesh.md"),
+                        help="replace the text between the markers in this file (default: docs/results/mesh.md; "
+                        "- prints)")
     parser.add_argument("--command", default="./scripts/run-mesh-bench.sh")
     parser.add_argument("--repeats", metavar="DIR",
                         help="one group per DIR/<config>-<planner>/bench.db (markers mesh-repeats by default)")
@@ -187,9 +189,6 @@ def main():
     else:
         args.marker = args.marker or MARKER
         text = overview(args.bench, args.command, args.marker)
-    if not args.readme:
-        sys.stdout.write(text)
-        return
     readme_markers.replace_between(args.readme, "<!-- %s:begin -->" % args.marker, "<!-- %s:end -->" % args.marker,
                                    text, "mesh_results")
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""README's planning-layer speed table, from the output of mddual_bench_planning.
+"""The planning-layer speed tables of docs/results/planning-speed.md, from mddual_bench_planning.
 
 Reads the Markdown that scripts/run-planning-bench.sh writes (out/bench-planning.md
 by default): per scene, the state-check line and the edge table. Writes one row per
@@ -9,13 +9,13 @@ validator with conservative advancement and how often its answer differs from
 MDD's, and MDD's pair queries per edge), then the lastValid table (the same edges
 checked with lastValid: times and the mean fraction kept of the invalid edges), and MDD's one-time
 set-up per scene when the input has it, between the markers
-`<!-- planning:begin -->` and `<!-- planning:end -->` of README.md (--readme), or
-to standard output.
+`<!-- planning:begin -->` and `<!-- planning:end -->` of docs/results/planning-speed.md
+(--readme names another file; --readme - prints to standard output).
 
-    scripts/planning_table.py [--input out/bench-planning.md] [--readme README.md]
+    scripts/planning_table.py [--input out/bench-planning.md] [--readme FILE|-]
         [--marker planning] [--command "./scripts/run-planning-bench.sh"]
 
---marker names the README block (`<!-- NAME:begin -->` ... `<!-- NAME:end -->`):
+--marker names the block (`<!-- NAME:begin -->` ... `<!-- NAME:end -->`):
 `planning` for the example scenes, `planning-mesh` for the mesh configs.
 """
 
@@ -87,16 +87,15 @@ def table(parsed, command):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--input", default=os.path.join(ROOT, "out", "bench-planning.md"))
-    parser.add_argument("--readme", help="replace the text between the planning markers in this file")
-    parser.add_argument("--marker", default="planning", help="name of the README block (default: planning)")
+    parser.add_argument("--readme", default=readme_markers.default_target("planning-speed.md"),
+                        help="replace the text between the planning markers in this file (default: "
+                        "docs/results/planning-speed.md; - prints)")
+    parser.add_argument("--marker", default="planning", help="name of the block (default: planning)")
     parser.add_argument("--command", default="./scripts/run-planning-bench.sh",
                         help="the command that made the input, quoted in the table's first line")
     args = parser.parse_args()
     with open(args.input) as f:
         text = table(parse(f.read()), args.command)
-    if not args.readme:
-        sys.stdout.write(text)
-        return
     begin, end = "<!-- %s:begin -->" % args.marker, "<!-- %s:end -->" % args.marker
     readme_markers.replace_between(args.readme, begin, end, text, "planning_table")
 

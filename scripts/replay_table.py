@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""README's replay table: the motion checks a planner makes, replayed with each checker.
+"""The replay table of docs/results/planning-speed.md: a planner's motion checks, replayed with each checker.
 
 Reads the Markdown that mddual_bench_replay prints (out/bench-replay.md by default,
 written by scripts/run-planning-bench.sh): its title line and its table. Writes them,
 after a line naming the command that made them, between the markers
-`<!-- replay:begin -->` and `<!-- replay:end -->` of README.md (--readme), or to
-standard output.
+`<!-- replay:begin -->` and `<!-- replay:end -->` of docs/results/planning-speed.md
+(--readme names another file; --readme - prints to standard output).
 
-    scripts/replay_table.py [--input out/bench-replay.md] [--readme README.md] [--command TEXT]
+    scripts/replay_table.py [--input out/bench-replay.md] [--readme FILE|-] [--command TEXT]
 """
 
 import argparse
@@ -27,22 +27,20 @@ def table(path, command):
     rows = [line for line in lines if line.startswith("|")]
     if not title or len(rows) < 3:
         raise SystemExit("replay_table: %s holds no mddual_bench_replay table (title and at least one row)" % path)
-    text = ["Made by `scripts/replay_table.py --readme README.md` from `%s`. %s" % (command, title[0]), ""]
+    text = ["Made by `scripts/replay_table.py` from `%s`. %s" % (command, title[0]), ""]
     return "\n".join(text + rows) + "\n"
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--input", default=os.path.join(ROOT, "out", "bench-replay.md"))
-    ap.add_argument("--readme", help="README to rewrite between the replay markers (default: print)")
+    ap.add_argument("--readme", default=readme_markers.default_target("planning-speed.md"),
+                    help="file to rewrite between the replay markers (default: docs/results/planning-speed.md; "
+                    "- prints)")
     ap.add_argument("--command", default="./scripts/run-planning-bench.sh")
     args = ap.parse_args()
     text = table(args.input, args.command)
-    if args.readme:
-        readme_markers.replace_between(args.readme, "<!-- replay:begin -->", "<!-- replay:end -->", text,
-                                       "replay_table")
-    else:
-        sys.stdout.write(text)
+    readme_markers.replace_between(args.readme, "<!-- replay:begin -->", "<!-- replay:end -->", text, "replay_table")
 
 
 if __name__ == "__main__":

@@ -1,17 +1,22 @@
 #!/usr/bin/env python3
-"""The README's benchmark overview, from the full runs' databases.
+"""The benchmark overview of docs/results/overview.md, from the full runs' databases.
 
 Reads out/bench-full/<config>/bench.db (made by scripts/run-full-bench.sh via
 `mddual bench`), summarises them with scripts/bench_report.py, and writes one
 compact table (per config and planner: success, median time and invalid
 solutions of each checker, MDD's time over FCL discrete's, and the MDD and
-FCL checkers' median time over the runs that returned a solution, valid or not), the issue's
+FCL checkers' median time over the runs that returned a solution, valid or not), the
 targets with their verdicts as measured, and how often the two halves of the
 strict verification agreed. The text replaces what lies between the markers
-`<!-- results:begin -->` and `<!-- results:end -->` in README.md (--readme), or
-goes to standard output.
+`<!-- results:begin -->` and `<!-- results:end -->` in docs/results/overview.md
+(--readme names another file; --readme - prints to standard output).
 
-    scripts/results_overview.py [--bench DIR] [--readme README.md]
+--headline FILE also writes the headline table (per config, the RRT-Connect
+runs: success, median time and invalid solutions of each checker) between
+`<!-- headline:begin -->` and `<!-- headline:end -->` of FILE (README.md), with
+--made-by naming the command and build the databases come from.
+
+    scripts/results_overview.py [--bench DIR] [--readme FILE|-] [--headline FILE] [--made-by TEXT]
 """
 
 import argparse
@@ -27,6 +32,10 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 CONFIGS = ["thin_walls", "convex_field", "narrow_passage", "maze_se2", "cubicles"]
 CHECKERS = ["mdd", "fcl", "fcl-continuous"]
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+HEADLINE_BEGIN, HEADLINE_END = "<!-- headline:begin -->", "<!-- headline:end -->"
+HEADLINE_PLANNER = "rrtconnect"
+SPACES = {"thin_walls": "R^3", "convex_field": "R^3", "narrow_passage": "SE(3)", "maze_se2": "SE(2)",
+          "cubicles": "SE(3)"}
 
 
 def translation_only(config):
@@ -51,7 +60,8 @@ def triple(stats, config, planner, fn):
     return " / ".join(fn(stats[(config, planner, c)]) if (config, planner, c) in stats else "-" for c in CHECKERS)
 
 
-def overview(bench_dir):
+def gather(bench_dir):
+    """(configs found, per-group statistics, (runs, limit) per config, verification agreement)."""
     stats, runs_limit, agree = {}, {}, [0, 0, 0]
     configs = [c for c in CONFIGS if os.path.exists(os.path.join(bench_dir, c, "bench.db"))]
     if not configs:
@@ -65,7 +75,33 @@ def overview(bench_dir):
             per_group[(r["planner"], r["checker"])] = per_group.get((r["planner"], r["checker"]), 0) + 1
         runs_limit[c] = (max(per_group.values()), rows[0]["timelimit"])
         agree = [a + b for a, b in zip(agree, agreement(db))]
+    return configs, stats, runs_limit, agree
 
+
+def headline(bench_dir, target, made_by):
+    """The README's table: one row per config, the RRT-Connect runs of every checker."""
+    configs, stats, runs_limit, _ = gather(bench_dir)
+    overview_page = os.path.join(ROOT, "docs", "results", "overview.md")
+    link = (os.path.relpath(overview_page, os.path.dirname(os.path.abspath(target))) if target != "-"
+            else "docs/results/overview.md")
+    lines = ["| config (runs x limit) | success mdd / fcl / fcl-cont | median time (s) mdd / fcl / fcl-cont "
+             "| invalid solutions mdd / fcl / fcl-cont |", "|---|---|---|---|"]
+    for c in configs:
+        p = HEADLINE_PLANNER
+        if not any((c, p, k) in stats for k in CHECKERS):
+            continue
+        lines.append("| %s, %s, %d x %g s | %s | %s | %s |" % (
+            c, SPACES.get(c, "?"), runs_limit[c][0], runs_limit[c][1],
+            triple(stats, c, p, lambda s: "%.0f%%" % (100 * s["success"])),
+            triple(stats, c, p, lambda s: bench_report.fmt(s["median_time"])),
+            triple(stats, c, p, lambda s: str(s["invalid"]))))
+    text = ["Made by `scripts/results_overview.py --headline` from the databases of `%s`: the RRT-Connect "
+            "rows of [docs/results/overview.md](%s), which has the other planners." % (made_by, link), ""]
+    return "\n".join(text + lines) + "\n"
+
+
+def overview(bench_dir):
+    configs, stats, runs_limit, agree = gather(bench_dir)
     lines = ["| config (runs x limit) | planner | success mdd / fcl / fcl-cont | median time (s) mdd / fcl / fcl-cont "
              "| mdd / FCL | solved time (s) mdd / fcl | invalid mdd / fcl / fcl-cont |", "|---|---|---|---|---|---|---|"]
     verdicts, mdd_invalid, thin_fcl_invalid = [], 0, 0
@@ -91,9 +127,8 @@ def overview(bench_dir):
                     c, p, bench_report.fmt(mdd["median_time"]), bench_report.fmt(fcl["median_time"]),
                     bench_report.fmt(mdd["ratio"], 2), 100 * mdd["success"], 100 * fcl["success"],
                     "met" if met else "missed"))
-    text = ["Made by `scripts/results_overview.py --readme README.md` from the databases of "
-            "`scripts/run-full-bench.sh` (per-config tables, commands and plots: "
-            "[docs/results/README.md](docs/results/README.md)).", ""]
+    text = ["Made by `scripts/results_overview.py` from the databases of `scripts/run-full-bench.sh` "
+            "(per-config tables, commands and plots: docs/results/README.md).", ""]
     text += lines + [""]
     text.append("Targets as measured:")
     text.append("")
@@ -113,13 +148,19 @@ def overview(bench_dir):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bench", default=os.path.join(ROOT, "out", "bench-full"))
-    parser.add_argument("--readme", help="replace the text between the results markers in this file")
+    parser.add_argument("--readme", default=readme_markers.default_target("overview.md"),
+                        help="replace the text between the results markers in this file (default: "
+                        "docs/results/overview.md; - prints)")
+    parser.add_argument("--headline", help="also write the headline table between the headline markers of this "
+                        "file (README.md; - prints)")
+    parser.add_argument("--made-by", default="scripts/run-full-bench.sh",
+                        help="the command and build the databases come from, for the headline's first line")
     args = parser.parse_args()
     text = overview(args.bench)
-    if not args.readme:
-        sys.stdout.write(text)
-        return
     readme_markers.replace_between(args.readme, BEGIN, END, text, "results_overview")
+    if args.headline:
+        readme_markers.replace_between(args.headline, HEADLINE_BEGIN, HEADLINE_END,
+                                       headline(args.bench, args.headline, args.made_by), "results_overview")
 
 
 if __name__ == "__main__":

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Core speed/accuracy benchmark, full MDD-DUAL paper protocol (ALGORITHMS.md
+# Core speed/accuracy benchmark, full MDD-DUAL paper protocol (docs/algorithms.md
 # section 5): builds mddual_bench_core (Release) in build-bench/, runs the ten
 # pairs with 40 orientations x 21 placements x 40 directions = 33,600 queries
 # per pair (ours cold/warm mdd and toi, Bullet and FCL casts, 3 timing passes),
 # and writes
 #   out/bench-core.json   the summary (mddual_bench_core --json)
-#   out/bench-core.md     the README tables (scripts/bench_core_table.py)
+#   out/bench-core.md     the tables of docs/results/core.md (scripts/bench_core_table.py)
 #   out/bench-core.txt    the human-readable table printed by the run
 #   out/bench-core.err    self-check messages and failure examples (with the
 #                         queries, ready to paste into a test)

@@ -6,12 +6,13 @@
 # the mesh configs of OMPL.app's sizes: bugtrap, twistycool, cubicles_mesh,
 # apartment, maze_planar, where runs that time out can bring a config to 30
 # minutes (3 checkers x 3 planners x runs x limit), plus the verification of
-# the solutions found, which on the apartment's 40,000 triangles takes minutes
-# per path until issue 9 item 6 is done). Builds
+# the solutions found, which on the apartment's 40,000 triangles takes seconds
+# per path). Builds
 # mddual (Release, build/release), runs `mddual bench` per config into
 # out/bench-full/<config>/, then writes docs/results/: one plot per config
 # (<config>.png) and README.md with the machine, the commands, each config's
-# wall time and its summary table; and the results table of README.md
+# wall time and its summary table; the results table of docs/results/overview.md
+# and, when all five example configs ran, the README's headline table
 # (scripts/results_overview.py, from every config's database under the output).
 #
 #   scripts/run-full-bench.sh                  all ten configs (hours: see above)
@@ -85,5 +86,19 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
     echo "![$c]($c.png)"
   done
 } >"$results/README.md"
-python3 scripts/results_overview.py --bench "$out" --readme README.md
-echo "run-full-bench: wrote $results/README.md, the plots and README.md's results table" >&2
+# The overview of docs/results/overview.md and, from a run of all five example
+# configs, the README's headline table (their RRT-Connect rows).
+headline=()
+missing=0
+for c in thin_walls convex_field narrow_passage maze_se2 cubicles; do
+  found=0
+  for ran in "${configs[@]}"; do [ "$ran" = "$c" ] && found=1; done
+  [ "$found" = 1 ] || missing=1
+done
+if [ "$missing" = 0 ]; then
+  headline=(--headline README.md --made-by "./scripts/run-full-bench.sh ${configs[*]} at $(git rev-parse --short HEAD), \
+$(date -u +%Y-%m-%d); $(nproc) cores, $cpu; seed $seed")
+fi
+python3 scripts/results_overview.py --bench "$out" --readme docs/results/overview.md "${headline[@]}"
+echo "run-full-bench: wrote $results/README.md, the plots and docs/results/overview.md" >&2
+if [ ${#headline[@]} -gt 0 ]; then echo "run-full-bench: and the headline table of README.md" >&2; fi

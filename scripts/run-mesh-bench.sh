@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The mesh configs of issue 9 (bugtrap, twistycool, cubicles_mesh, apartment,
+# The mesh configs (bugtrap, twistycool, cubicles_mesh, apartment,
 # maze_planar) with `mddual bench`: the MDD checker against FCL with OMPL's
 # discrete validator, RRT-Connect, RRT, KPIECE and our mdd_rrtconnect, the same runs, limits and
 # seed for both; every solution verified. Builds mddual (Release,
 # build/release), writes out/bench-mesh/<config>/ (logs, bench.db, plots) and,
-# without --no-readme, the mesh-results table of README.md
+# without --no-readme, the mesh-results table of docs/results/mesh.md
 # (scripts/mesh_results.py).
 #
 #   scripts/run-mesh-bench.sh [--no-readme] [CONFIG ...]
@@ -37,6 +37,6 @@ for c in "${configs[@]}"; do
     --runs "$runs" --time-limit "$limit" --seed 1 --output "$out/$c"
 done
 if [ "$readme" = 1 ]; then
-  python3 scripts/mesh_results.py --bench "$out" --readme README.md \
+  python3 scripts/mesh_results.py --bench "$out" --readme docs/results/mesh.md \
     --command "MDDUAL_MESH_RUNS=$runs MDDUAL_MESH_LIMIT=$limit ./scripts/run-mesh-bench.sh"
 fi

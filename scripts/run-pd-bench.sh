@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Penetration-depth benchmark (issue 5): builds mddual_bench_pd (Release) in
+# Penetration-depth benchmark: builds mddual_bench_pd (Release) in
 # build-bench/, runs the paper-protocol pairs (overlapping placements), random
 # hulls of 10 to 5000 vertices and the hard inputs (flat, thin, deep,
 # touching): our exact, shallow and approximate (delta 0.1, 0.01) PD against

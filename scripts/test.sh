@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 
 jobs="${MDDUAL_JOBS:-$(nproc)}"
 # Each phase prints its wall time when the next begins (the suite's budget is
-# 20 minutes with the builds; the README's test-time paragraph quotes them).
+# 20 minutes with the builds; docs/results/fresh-clones.md records them).
 phase_name=""
 phase_start=$SECONDS
 phase() {

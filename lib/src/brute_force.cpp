@@ -1,5 +1,5 @@
 // Brute force: M = hull{a_i - b_j} built explicitly, then the line clipped
-// with every face plane (ALGORITHMS.md section 1, "Brute-force ground truth").
+// with every face plane (docs/algorithms.md section 1, "Ground truth").
 //
 // A flat M (parallel flat A and B) has only the two faces +-N; its polygon's
 // edges are added as side planes (the edge's outward in-plane normal), so the

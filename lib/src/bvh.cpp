@@ -275,7 +275,7 @@ bool triangleObbApart(const std::array<Eigen::Vector3d, 3>& tri, const Obb& box,
   //    round-off of the dot products, about 1e-16 of |a| |p|, far below the
   //    slack (kBvhSlackRel of the scale). Callgrind, the state checks of the
   //    five mesh configs: 3% to 8% fewer instructions than projecting all
-  //    three (README, "A world triangle against the robot node's box").
+  //    three (docs/results/planning-speed.md, "A world triangle against the robot node's box").
   const auto apart = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& q, const Eigen::Vector3d& w) {
     const double r = h.dot(a.cwiseAbs()) + slack * a.cwiseAbs().sum();
     const double dq = a.dot(q), dw = a.dot(w);

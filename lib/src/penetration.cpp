@@ -246,7 +246,7 @@ PolyhedralResult polyhedralPenetrationDepth(const PolyhedralInput& input) {
   try {
     if (input.method == PenetrationMethod::kBruteForce) {
       // Reference: min over the facets of M of h / h_K(n), with the vertex
-      // of K attaining h_K(n) (ALGORITHMS.md section 1, penetration.h).
+      // of K attaining h_K(n) (docs/algorithms.md section 1, penetration.h).
       const BruteForce brute(input.a, input.X_WA, input.b, input.X_WB);
       r.status = fromIntersect(brute.intersect().status);
       if (r.status != PenetrationStatus::kPenetrating) return r;

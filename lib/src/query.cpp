@@ -185,7 +185,7 @@ LineInterval flatInterval(const PairGeometry& pair, const Eigen::Vector3d& u_A, 
   return out;
 }
 
-/// Signed MDD and status from the computed ends (ALGORITHMS.md section 1).
+/// Signed MDD and status from the computed ends (docs/algorithms.md section 1).
 void classify(const LineInterval& line, double tol, MddResult* r) {
   if (!line.hit) return;                        // kNoContact, fields stay NaN
   r->t_lo = line.lo ? line.lo->t + 0.0 : kNaN;  // + 0.0: no negative zero

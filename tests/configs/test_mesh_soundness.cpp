@@ -20,7 +20,7 @@
 //   MDDUAL_PLANNING_SCALE=250 tests/configs/test_mesh_soundness --gtest_filter='*NoMisses*apartment*'
 // (the apartment: 14 min wall, 9 min CPU). MDDUAL_PLANNING_SEED=n draws
 // another sample. The counts and times measured with these commands are in
-// README.md (Planning layer, mesh configs).
+// docs/results/soundness.md.
 #include <gtest/gtest.h>
 
 #include <ompl/base/ScopedState.h>

@@ -1,4 +1,4 @@
-// The paper's benchmark polytopes: vertex counts and size (ALGORITHMS.md 5).
+// The paper's benchmark polytopes: vertex counts and size (docs/algorithms.md section 5).
 #include <gtest/gtest.h>
 
 #include "mddual/error.h"

@@ -40,10 +40,9 @@ inline constexpr double kCoplanarToleranceRel = 1e-12;
 
 // Polytopes with more vertices than this get a Dobkin-Kirkpatrick hierarchy,
 // which fills their direction table (one O(log n) descent per cell) and serves
-// supportVertexHierarchy(); smaller ones climb from vertex 0 there. Measured
-// on random hulls (vertices whose support value a cold query
-// evaluates, hierarchy vs climb from vertex 0): 40 vs 34 at n = 100, 51 vs 55 at
-// 300, 65 vs 92 at 1000, 83 vs 189 at 5000, 97 vs 376 at 20000.
+// supportVertexHierarchy(); smaller ones climb from vertex 0 there. On random
+// hulls a cold query evaluates fewer vertices with the hierarchy from about 300
+// vertices on (65 against 92 at 1,000; docs/results/tuning.md).
 inline constexpr int kHierarchyMinVertices = 256;
 
 // The hierarchy removes independent sets of vertices of degree at most this

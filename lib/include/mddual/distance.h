@@ -1,5 +1,5 @@
 // Separation distance between two posed convex polytopes, with witness
-// points (../shared/ALGORITHMS.md conventions, as in query.h): A and B are
+// points (conventions of ../../../docs/algorithms.md#separation-distance, as in query.h): A and B are
 // convex polytopes posed in the world by X_WA and X_WB, M = A - B, and
 //
 //   distance(A, B) = min { |a - b| : a in A, b in B } = distance from the origin to M.

@@ -1,5 +1,5 @@
 // Point sets for tests, benchmarks and the CLI demo: the six polytopes of the
-// MDD-DUAL paper's benchmark (ALGORITHMS.md section 5) and the families the
+// MDD-DUAL paper's benchmark (docs/algorithms.md section 5) and the families the
 // randomized tests sweep. Everything random takes an explicit generator, so
 // callers decide the seed.
 #pragma once

@@ -1,6 +1,6 @@
 // Penetration depth, width and penetration depth under a polyhedral metric
 // (Agarwal, Guibas, Har-Peled, Rabinovitch, Sharir, "Penetration Depth of Two
-// Convex Polytopes in 3D"; ../shared/ALGORITHMS.md section 4).
+// Convex Polytopes in 3D"; ../../../docs/algorithms.md#4-penetration-depth).
 //
 // Conventions (as in query.h): A is fixed, B moves, M = A - B. B translated by
 // t overlaps A iff t is in the interior of M, so

@@ -1,7 +1,7 @@
 // Directional queries between two posed convex polytopes: the signed minimum
 // directional distance (mdd), the time of impact along a direction (toi) and
 // the intersection test (intersect), computed with MDD-DUAL (Choi, Li, Rong,
-// Wang, Cameron). Conventions (../shared/ALGORITHMS.md section 1):
+// Wang, Cameron). Conventions (../../../docs/algorithms.md#1-definitions-and-sign-conventions):
 //
 //   A is fixed, B moves. M = A - B. B translated by v touches or overlaps A iff
 //   v is in M. The direction s (any nonzero length) gives u = s / |s|; the line

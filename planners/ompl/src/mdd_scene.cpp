@@ -18,7 +18,7 @@ using detail::kInf;
 /// bytes, 2.9 MB. Measured against the unordered map (benchmarks/planning,
 /// --mdd-only, mesh configs): the same speed within 7%.
 constexpr int kWarmSlotBits = 15;
-/// Sub-edge count safety factor (see the header: OMPL's slerp round-off).
+/// Sub-edge count safety factor (docs/design/rotating-edges.md: OMPL's slerp round-off).
 constexpr double kSubEdgeSafety = 1e-6;
 /// An enlarged piece (enlargePiece at delta) lies within this many delta of
 /// the piece: the cube's circumradius sqrt(3) (the icosahedron's is 1.26),

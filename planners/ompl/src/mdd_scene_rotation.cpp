@@ -15,7 +15,7 @@ using detail::kInf;
 /// e(N, I) is computed times (1 + kGrowthSafety), plus kSlerpRoundoffRel
 /// times N's largest distance from the body origin: OMPL's slerp between
 /// states whose quaternion norms are within 1e-9 of 1 differs from
-/// EdgeMotion's rotation by about that much (see the header).
+/// EdgeMotion's rotation by about that much (docs/design/rotating-edges.md).
 constexpr double kGrowthSafety = 1e-6;
 constexpr double kSlerpRoundoffRel = 1e-8;
 /// Which part of a triple to split: its interval is halved when e exceeds
@@ -195,7 +195,7 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     return static_cast<int>(intervals.size()) - 1;
   };
   // How node N moves over I: a sweep along a segment and a growth e(N, I)
-  // (the header's arc or chord, whichever grows less).
+  // (the arc or the chord of docs/design/rotating-edges.md, whichever grows less).
   const auto sweepOf = [&](const Bvh::Node& n, const Interval& I) {
     return partSweepWithSin(n.centre, n.radius, n.max_norm, axis_R, I.half_angle, I.sin_half, I.X_WI, I.v_W);
   };
@@ -243,8 +243,8 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // large flat triangles has a thin box in a wide sphere). The box test
     // before N's box is posed: callgrind (RRT-Connect's recorded checks,
     // MDD's checkEdge) bugtrap -6.1%, twistycool -0.8%, the apartment +0.6%
-    // (its checks are mostly state checks; see the README's account for the
-    // variants tried).
+    // (its checks are mostly state checks; see docs/results/planning-speed.md for
+    // the variants tried).
     const auto sphereMisses = [&](const Eigen::Vector3d& c_W, double rs, const Eigen::Vector3d& dir_W, double len,
                                   const Eigen::Vector3d& v_W) {
       const double s = len > 0.0 ? std::clamp((M.centre - c_W).dot(dir_W), 0.0, len) : 0.0;

@@ -16,38 +16,17 @@
 // lastValid (OMPL's DiscreteMotionValidator does, at its resolution), which
 // is how it runs in the benchmark beside OMPL's planners with every checker.
 //
-// Why a step when blocked, not the whole edge up to its contact (what this
-// planner did until this round): a lastValid check costs MDD-DUAL several
-// times a validity check (it must prove the edge free up to the contact, not
-// find one contact), and most blocked edges are short ones near the trees'
-// obstacles (CONNECT's, and extensions toward near samples), whose lastValid
-// gains little. Measured (mddual bench --checkers mdd --planners
-// mdd_rrtconnect --runs 10 --time-limit 10, seeds 1 to 3, every run solved;
-// medians, the whole edge up to lastValid -> the step of 0.2 of the maximum
-// extent): bugtrap 0.423 / 0.236 / 0.304 s -> 0.236 / 0.123 / 0.111,
-// cubicles_mesh 4.07 / 4.63 / 4.75 ms -> 3.35 / 4.01 / 2.53, maze_planar
-// 0.0954 / 0.0920 / 0.0835 s -> 0.0616 / 0.0588 / 0.0672, the apartment
-// 0.334 / 0.250 / 0.231 s -> 0.344 / 0.236 / 0.308, twistycool 0.164 /
-// 0.493 / 0.922 s -> 1.09 / 0.590 / 0.686 (OMPL's RRT-Connect with the same
-// checker: bugtrap 0.114 / 0.214 s, twistycool 3.63 / 3.45 s with seeds 1
-// and 2). Asking lastValid of a blocked edge no longer than the step too
-// gave back most of the gain (bugtrap 0.241 / 0.272 / 0.304 s, twistycool
-// 0.507 / 0.642 / 0.717, the maze 0.107 / 0.108 / 0.108), and
-// checking the step for validity only lost twistycool (seed 3: 5.52 s, 8 of
-// 10 solved) while it gained bugtrap (0.0792 s). Other steps (the same
-// runs): 0.1 of the extent made twistycool faster (0.461 / 0.208 / 0.499 s)
-// and bugtrap slower (0.309 / 0.468 / 0.154 s), the cubicles 1.3x slower,
-// the maze 1.1x, the apartment 0.91x to 1.41x; 0.4 made twistycool slower than
-// the whole edge (3.02 / 2.46 / 2.26 s) and the maze 1.3x slower. 0.2, OMPL's
-// own default range, lies between them. Where the way is a narrow slot the
-// whole edge up to lastValid stays the faster (whole_edge_last_valid = 1):
-// twistycool above, the narrow passage 0.796 / 0.565 s against 1.97 / 1.16
-// (seeds 1 and 2); asking lastValid of short blocked edges only in CONNECT,
-// or only in EXTEND, recovered neither (narrow passage 1.63 / 0.954 / 0.847
-// and 2.33 / 0.880 / 1.18 s), the latter slowing bugtrap (0.389 / 0.871 /
-// 0.290 s).
+// Why a step when blocked, not the whole edge up to its contact: a lastValid
+// check costs MDD-DUAL several times a validity check (it must prove the edge
+// free up to the contact, not find one contact), and most blocked edges are
+// short ones near the trees' obstacles (CONNECT's, and extensions toward near
+// samples), whose lastValid gains little. Against the whole edge, a step of
+// 0.2 of the maximum extent (OMPL's default range) cut the median 1.8x to 2.7x
+// on bugtrap and 1.2x to 1.6x on the maze, while the whole edge stays the
+// faster through narrow slots, hence whole_edge_last_valid (`mddual bench
+// --planners mdd_rrtconnect` on the mesh configs; docs/results/tuning.md).
 //
-// Rotate, then translate (SE(2) and SE(3), issue 9 item 7): on OMPL's
+// Rotate, then translate (SE(2) and SE(3)): on OMPL's
 // SE2StateSpace and SE3StateSpace an extension from q to a target t is two
 // edges: a rotation in place (q's position, t's orientation) and then a pure
 // translation to t. Under OMPL's interpolation (position linear, orientation
@@ -84,7 +63,7 @@
 // a rotation in place already kept stays), "rotate_first"
 // (1: the two-edge extension where the space allows it; 0, the default:
 // straight edges everywhere). Rotating first was the default for a while; it made the
-// planner about 10x slower on the SE(2) maze and the SE(3) cubicles (README,
+// planner about 10x slower on the SE(2) maze and the SE(3) cubicles (docs/planning.md,
 // "The benchmark"), so it is off.
 //
 // Why one step for min_progress: on a translation edge MDD-DUAL's validator
@@ -97,37 +76,25 @@
 // edge; with a threshold of 1e-6 of the maximum extent, as before, CONNECT
 // repeated that creep, one lastValid check each time. (OMPL's discrete
 // validator creeps little: its lastValid is a step before its first colliding
-// sample, near which the next extension samples.) Measured (README, the
-// mdd_rrtconnect paragraph of the mesh results; five mesh configs, two seeds,
-// 10 runs each): the median fell by 1.3x to 4.5x in all 10 (config, seed)
-// groups. The space's longest valid segment (resolution x the sum of the
-// extents) as the step, tried first, is 6% to 21% longer than a pure
-// translation's step on the mesh configs and 6 to 19 of a pure rotation's
-// (1 + translation extent / rotation extent): it discards real progress of
-// turning edges. Against it the edge's step was faster in 7 of the 10 groups
-// (1.08x to 2.3x), within 2% in 2, slower in 1 (twistycool with seed 1:
-// 4.28 s, 8 of 10 solved, against 3.60 s, 9 of 10).
+// sample, near which the next extension samples.) A threshold of one step of
+// the edge made the median 1.3x to 4.5x lower than that 1e-6 in all 10
+// (config, seed) groups of `mddual bench` on the mesh configs; the space's
+// longest valid segment, tried first as the step, discards real progress of
+// turning edges (docs/results/tuning.md).
 //
 // Why a probe four steps in: an edge blocked within its first few steps
 // gains little (at most the steps before its contact), and with MDD-DUAL's
 // validator its lastValid search is the dearest check the planner makes.
-// In a recorded bugtrap run (README, "What mdd_rrtconnect's lastValid
-// searches on bugtrap are spent on") 804 of the 1,240 searched blocked
-// rotating edges, though free one step in, returned less than a step (and
-// were dropped by min_progress) after 42% of the triples of all the run's
-// rotating searches (valid edges' included). One state test is meant to end
-// many of those first (not those free again four steps in); it also drops
-// the edges blocked between the first and the fourth step that the search
-// would have kept. The probe is the planner's, so it runs with every motion
-// validator; with OMPL's discrete validator, which samples from the start,
-// it saves at most a few state tests of a blocked edge and repeats one of
-// every other. Measured with the MDD checkers on the
-// five mesh configs (README, "A probe before each extension's motion
-// check"; 20 runs, seeds 1 to 3): 4 steps gave lower medians than no probe
-// in 13 of 15 (config, seed) groups (bugtrap 0.35 -> 0.215 s with seed 1,
-// the apartment 0.713 -> 0.251 s with seed 2; twistycool and the cubicles
-// slower with seed 1, 0.589 -> 0.663 s and 3.56 -> 3.94 ms); 2 and 3 steps
-// gained less, 6 about as much as 4.
+// In a recorded bugtrap run, most blocked rotating edges that were free one step
+// in still returned less than a step, after a large share of the run's
+// rotating searches. One state test is meant to end many of those first (not
+// those free again four steps in); it also drops the edges blocked between
+// the first and the fourth step that the search would have kept. The probe is
+// the planner's, so it runs with every motion validator; with OMPL's discrete
+// validator, which samples from the start, it saves at most a few state tests
+// of a blocked edge and repeats one of every other. Four steps gave lower
+// medians than no probe in 13 of 15 (config, seed) groups (`mddual bench`
+// with the MDD checkers on the mesh configs; docs/results/tuning.md).
 #pragma once
 
 #include <memory>

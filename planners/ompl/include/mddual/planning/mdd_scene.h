@@ -3,181 +3,18 @@
 // static world (scene::World, frame W). The OMPL checkers and the directed
 // clearance queries are thin layers over it.
 //
-// What it guarantees (touching counts as collision everywhere, like FCL):
-//
-//  - collides(X_WR): exact up to the core's touching tolerance (1e-10 of the
-//    pair's size): the robot's hierarchy posed at X_WR against the world's
-//    (mddual::Bvh, tree against tree: sphere, axis-aligned and oriented box
-//    tests; each volume holds its node's pieces), and every pair of pieces
-//    that reaches the leaves with mddual::intersect (early escape), stopping
-//    at the first intersecting pair.
-//
-//  - sweep(X_WR, v_W): the robot translating from X_WR by s v_W, s in [0, 1]
-//    (orientation fixed). Exact: a branch and bound over pairs of nodes
-//    (mddual::castFirst), nearest first by the first distance at which their
-//    swept volumes may meet (a lower bound for every pair of pieces below),
-//    with one mddual::toi per pair of pieces it reaches, max_distance shrunk
-//    to the best contact so far; node pairs whose bound is not below it are
-//    pruned. When only whether there is a contact is asked (first_contact
-//    false: checkEdge's kValidity), the pairs are visited depth first and the
-//    first contact found ends the sweep.
-//    The first contact is the smallest toi over all pairs, as with a loop over
-//    every pair.
-//
-//  - checkEdge(motion): an edge under OMPL's interpolation (EdgeMotion).
-//    Translation edges: sweep() at the start orientation, exact; the first
-//    contact fraction is exact (kLastValid with a tolerance: a lower bound at
-//    most the tolerance below it, castFirst's stop_within). Rotating edges: SOUND, never "free" when the
-//    motion collides, by a branch and bound over triples (robot node N, world
-//    node M, time interval I = [ta, tb]) of the two hierarchies:
-//      Let tm be the middle of I. The rotation is about a fixed axis of the
-//      body frame through the body origin at constant angular speed, so R(t)
-//      = R(tm) Rot(axis, a) with |a| <= (tb - ta) angle / 2 for t in I, and
-//      every body point x satisfies |R(t) x - R(tm) x| = |Rot(axis, a) x - x|
-//      <= |a| dist(x, axis). For the points of N, dist(x, axis) <= rho(N),
-//      the smaller of their largest distance from the body origin and the
-//      distance of N's bounding sphere's centre from the axis plus its radius.
-//      So with e(N, I) = (tb - ta) / 2 * angle * rho(N), the part N of the
-//      robot at time t lies inside N at orientation R(tm), placed at p(t),
-//      grown by e; p(t) = p(ta) + (t - ta) / (tb - ta) v runs along the
-//      segment v = p(tb) - p(ta). The displacement Rot(axis, a) x - x is
-//      perpendicular to the axis, so N's oriented box need only grow by the
-//      support of a disk of radius e perpendicular to the axis: along the
-//      box's axis b_k, e sqrt(1 - (axis . b_k)^2) (rotationSweptBox). The
-//      volumes used (N's oriented box grown so, the axis-aligned box around
-//      it, and N's sphere grown by e, at R(tm) placed at p(ta)) thus
-//      hold N at every t in I when translated by s v for s = (t - ta) / (tb -
-//      ta) in [0, 1]. A triple is cleared when one of those volumes swept by
-//      s v, s in [0, 1], misses the same volume of M (swept sphere, slab and
-//      separating-axis tests, exact for each pair of volumes; for a world
-//      leaf that is a triangle, the triangle itself in place of its oriented
-//      box: triangleObbCastInterval, exact on the 13 axes of a triangle and
-//      a box), or when N's
-//      swept sphere misses M's oriented box along one of that box's face
-//      axes (sweptSphereObbApart: a sphere that meets the box meets it on
-//      every axis), or when the sphere of radius max_norm(N) (the largest
-//      distance of N's points from the body origin; times 1 + 1e-8, the
-//      slerp round-off below) centred at p(ta) and swept along v misses M's
-//      sphere or oriented box (N's points lie in it at every orientation, so
-//      it needs no growth e: it clears far triples of long turns without
-//      splitting them). Then no piece of N touches a piece of M at any time
-//      of I. Otherwise it is split into two triples that cover it: I
-//      halved, or the larger of N and M replaced by its children (which of
-//      them is a matter of speed, not soundness: mdd_scene_rotation.cpp).
-//      The swept oriented boxes (or the box and the triangle) meet only for
-//      s in [s_lo, s_hi], so every contact in the triple lies at t in [ta +
-//      (tb - ta) s_lo / |v|, ta + (tb - ta) s_hi / |v|]: a half of I outside
-//      that window is dropped, not split.
-//      A pair of leaves (robot piece i, world piece j) with e <= delta is
-//      checked with the core: piece i enlarged by delta_k = delta / 2^k, the
-//      finest level k
-//      <= refinement_levels with delta_k >= e (enlargePiece: it holds every
-//      point within delta_k of the piece, hence piece i over all of I), at
-//      orientation R(tm), swept from p(ta) along v against piece j with toi
-//      (intersect when v = 0). No contact: the pair is free on I. A contact
-//      at a level k below the finest: I is halved and both halves checked
-//      again (their e is at most half, plus the round-off part below, so
-//      they soon reach level k + 1 or finer; the level is always one whose
-//      enlargement covers e, so how soon is a matter of speed). A contact
-//      at the finest level at distance d along v: the edge collides, with a
-//      first contact no earlier than ta + (tb - ta) d / |v| (ta when v = 0).
-//      Termination: at nodes, time is split only while the interval still
-//      halves and the growth that halving shrinks (the arc or chord part,
-//      not the round-off part below) exceeds that round-off part; a level
-//      whose finer neighbour's enlargement is not above twice the round-off
-//      part counts as the finest (that neighbour is out of reach); on an
-//      interval that no longer halves, a leaf pair with e > delta is taken as
-//      a contact at its start and any leaf hit as final, and validity's
-//      depth-first refinement declares the edge colliding. All of these are
-//      "collides" verdicts or lower bounds, so the argument below is
-//      unchanged; only the false-alarm margin widens where they apply.
-//      Every (robot piece, world piece, time) is covered by the root triple
-//      (one per world tree once the world has changed: see below),
-//      a split replaces a triple by triples that cover it, and a triple is
-//      dropped only when cleared or when the pair is free on it. So when the
-//      edge is declared free, no piece touches another at any time of it.
-//    Chord sweep (partSweep): the growth above is of order h dist(N, axis)
-//      (h = (tb - ta) angle / 2), large for a small node far from the axis,
-//      although such a node moves along a nearly straight chord. Let (c, r)
-//      be N's bounding sphere, k = axis x c (|k| = dist(c, axis)), x = c + y
-//      a point of N (|y| <= r) and a = (2s - 1) h the angle at s = (t - ta)
-//      / (tb - ta) (slerp turns at constant speed). Then
-//        Rot(axis, a) x - x = sin(a) k - (1 - cos a) c_perp + (Rot(axis, a) y - y)
-//      with sin(a) = (2s - 1) sin(h) + q, |q| <= h - sin h <= h^3 / 6 (sin
-//      is concave on [0, h] for h <= pi; the chord below is taken only when
-//      its e is the smaller of the two, which needs |k| > 0 and h / 2 + h^2
-//      / 6 < 1, i.e. h < (sqrt(33) - 3) / 2 ~ 1.37), 1 - cos a <= h^2 / 2
-//      and |Rot(axis, a) y - y| <= h r; every term is perpendicular to the
-//      axis.
-//      So N at time t lies inside N at orientation R(tm) placed at p(ta) -
-//      sin(h) R(tm) k, translated by s (v + 2 sin(h) R(tm) k), grown by
-//      e = h r + (h^2 / 2 + h^3 / 6) |k| perpendicular to the axis (with
-//      the safety factor and round-off part below): of order h times
-//      N's size plus h^2 times its distance from the axis. Each (node,
-//      interval) takes whichever of the two, arc or chord, has the smaller
-//      e, for all its volumes and, at a leaf, for the enlarged piece's sweep;
-//      the argument above holds with p(ta), v and e read as the chosen
-//      sweep's start, segment and growth (time maps to s linearly in both,
-//      so contact fractions and windows carry over unchanged).
-//    e is computed with a safety factor (1 + 1e-6) and 1e-8 times N's largest
-//    distance from the body origin added, for the round-off of OMPL's
-//    quaternion slerp (states stored with norms within 1e-9 of 1: a small
-//    rotation about any axis; the box grows by that part along each of its
-//    axes). The enlargement at the leaves is at least delta /
-//    2^refinement_levels, which keeps false alarms to clearances below it
-//    (below 4e-8 of the robot radius instead where that is larger: the
-//    termination rules above).
-//    First contact (EdgeQuery::kFirstContact): triples wait in a queue ordered by a lower
-//    bound of any contact in them, ta + (tb - ta) s_lo (s_lo the first s at
-//    which the swept volumes meet; at the true first contact t* of a pair in
-//    the triple its volumes meet, so the bound is <= t*), and the search stops
-//    when that bound reaches the smallest finest-level contact found, f. The
-//    triples holding the true first contact t* are each split, refuted at the
-//    finest level with fraction <= t* (the enlarged sweep holds the true
-//    motion), or left with a bound >= f and <= t*: so f <= t*, a lower bound
-//    of the first contact, never later than it. Validity only
-//    (EdgeQuery::kValidity): a pair refuted at a coarse level is refined
-//    at once, depth first, and the search stops at the first finest-level
-//    contact or when the true pieces of a refuted pair intersect at the
-//    refuted sweep's contact time (a state of the edge that collides).
-//    lastValid (EdgeQuery::kLastValid): the verdict as in validity only (a
-//    colliding probe state, the end, middle or quarters, settles it
-//    first); on a colliding edge, the first-contact queue with a leaf
-//    contact at level MddSceneOptions::last_valid_level or finer taken as a
-//    bound, like a finest-level one (piece i enlarged at ANY level k holds
-//    the true piece over its interval, so its sweep's contact fraction is no
-//    later than the pair's true first contact; coarser contacts are split
-//    only to make the bound tighter), stopped once the queue's smallest bound b is within
-//    the tolerance of the best contact f found; it returns min(f, b). By the
-//    argument for f above that is no later than t*, and it is at most the
-//    tolerance below what the search run to the end would return (which is
-//    no later than f).
-//
-// Worlds that change (addWorldPiece, removeWorldPiece, moveWorldPiece): the
-// world side of every traversal above is a forest of two hierarchies, a
-// static Bvh over the world's pieces as they were at its last build, whose
-// leaves of removed or moved pieces are skipped (a skipped leaf is a pair
-// without contact: the piece is not in the world), and an overflow Bvh over
-// the pieces added or moved since, rebuilt at each update (at most
-// scene::World::overflowLimit(n) = max(16, 2 sqrt(n)) pieces); both are
-// rebuilt from the current pieces once the overflow and the skipped leaves
-// together exceed that limit. Every current world piece is a live leaf of
-// exactly one of the two trees, so the arguments above hold with "the world's
-// hierarchy" read as "each of the two": collides() and sweep() run their
-// traversal on each tree (the sweep's second cast limited to the first's
-// best contact), and checkRotating starts with one root triple per non-empty
-// world tree, which together cover every (robot piece, world piece, time).
-// Verdicts, first-contact distances and translation edges' fractions do not
-// depend on the history of updates (test_mdd_scene compares them with a scene
-// built from scratch); which pair is reported at a tie, the contact a yes/no
-// sweep stops at, kLastValid's bound with a tolerance (within it of the
-// exact contact on translation edges), and a rotating edge's bound and false alarms (within the
-// enlargement) may depend on the shape of the world's trees, as they may for
-// any two builds of the same pieces.
-// Warm starts are keyed by the world piece's id (scene::World), which an
-// update does not change: the other pairs keep theirs. A moved piece keeps
-// its own too (only where the next search starts; the core range-checks
-// it).
+// Contract (touching counts as collision everywhere, like FCL):
+//  - collides(X_WR) and sweep(X_WR, v_W) (a translation) are exact up to the
+//    core's touching tolerance, 1e-10 of the pair's size.
+//  - checkEdge(motion), an edge under OMPL's interpolation: translation edges
+//    are exact; rotating edges are sound, never "free" when the motion
+//    collides (a free edge within the enlargement of an obstacle may be called
+//    colliding). A first contact is never later than the true one.
+//  - Verdicts and first-contact distances do not depend on the history of
+//    world updates (addWorldPiece, removeWorldPiece, moveWorldPiece).
+// Why these hold (the hierarchies, the search over robot node, world node and
+// time interval, the chord sweep, slerp round-off, worlds that change):
+// docs/design/rotating-edges.md.
 //
 // Thread safety: const methods may be called from any number of threads. Warm
 // starts are kept per thread, per (robot piece, world piece, enlargement
@@ -208,23 +45,16 @@ namespace mddual::planning {
 /// Largest MddSceneOptions::refinement_levels and last_valid_level.
 inline constexpr int kMaxRefinementLevels = 8;
 
-/// MddSceneOptions::last_valid_level's default. `mddual bench CFG --checkers
-/// mdd --planners kpiece --runs 30 --time-limit 10 --seed 1` with levels 0
-/// (any level, the default before), 1, 2 and 3 (the finest), two levels side
-/// by side on the 2-core machine: twistycool solved 4, 17, 14 and 16 of 30
-/// runs, bugtrap 15, 18, 18 and 8, the apartment 19 and 24 with levels 0
-/// and 1 (medians 7.30 s and 6.06 s). Replaying recorded KPIECE checks
-/// (mddual_bench_replay), level 1 against 0 keeps 0.292 of an invalid edge
-/// against 0.269 on twistycool and 0.350 against 0.329 on bugtrap (FCL's
-/// discrete check 0.313 and 0.370) for 1.25x and 1.34x the time per recorded
-/// check (valid and invalid ones); the finest level keeps as much as FCL's
-/// check for 2.0x and 1.7x.
+/// MddSceneOptions::last_valid_level's default: level 1 keeps more of an
+/// invalid edge than level 0 for about 1.3x the time per check, and solved the
+/// most KPIECE runs on twistycool, bugtrap and the apartment (`mddual bench
+/// --planners kpiece`, 30 runs; docs/results/tuning.md).
 inline constexpr int kDefaultLastValidLevel = 1;
 
 /// Options of an MddScene.
 struct MddSceneOptions {
   /// delta of the rotating-edge scheme (world units): the enlargement of the
-  /// robot pieces at the coarsest leaf queries (see the file comment); a pair
+  /// robot pieces at the coarsest leaf queries (see docs/design/rotating-edges.md); a pair
   /// of pieces is checked with the core once its time interval is short
   /// enough that no point of the robot piece moves more than delta from the
   /// interval's middle orientation. <= 0 selects the default,
@@ -244,10 +74,8 @@ struct MddSceneOptions {
   /// first-contact search refines it. Level k's piece reaches up to 1.73
   /// delta / 2^k beyond the true one, so its contact can come that much
   /// motion before the true first contact: a coarser level answers sooner
-  /// and keeps less of an invalid edge. Measured (`mddual bench`, KPIECE,
-  /// which asks for lastValid on every check and drops a partial motion that
-  /// keeps less than 0.2 of its edge; 30 runs of 10 s per level, two levels
-  /// side by side): see kDefaultLastValidLevel.
+  /// and keeps less of an invalid edge. kDefaultLastValidLevel says why the
+  /// default is 1.
   int last_valid_level = kDefaultLastValidLevel;
 };
 
@@ -256,9 +84,8 @@ struct MddSceneOptions {
 /// enlarged piece reaches at most 1.73 delta beyond the piece (the cube's
 /// circumradius), 0.43% of the radius after the default 3 refinements. Relative to the robot, not to the space's
 /// resolution: the enlargement is what costs completeness, and it should be small against the robot, whatever the size
-/// of the world. Measured on the tests' scenes (2,000 rotating edges each): 2% finds 0 to 6 free edges invalid, 5% 5 to
-/// 26, for about the same time (fewer sub-edges, more refinement); 1% costs
-/// 30% more time.
+/// of the world. On the test scenes' 2,000 rotating edges, 2% calls 0 to 6 free edges invalid against 5 to 26 at 5%, in
+/// about the same time, where 1% takes 30% longer (docs/results/tuning.md).
 inline constexpr double kDefaultRotationToleranceRel = 0.02;
 
 /// One contact between a robot piece and a world piece.
@@ -340,7 +167,7 @@ struct EdgeContact {
   int sub_edges = 0;
 };
 
-/// See the file comment.
+/// See the file comment and docs/design/rotating-edges.md.
 class MddScene {
  public:
   /// Throws InvalidInputError for a null robot or world, a robot without
@@ -382,7 +209,7 @@ class MddScene {
   /// overflow).
   int worldIndex(int t, int k) const;
 
-  // ---- Worlds that change (see the file comment; not thread-safe). The
+  // ---- Worlds that change (see docs/design/rotating-edges.md; not thread-safe). The
   // first update copies the world: the World given to the constructor is
   // never modified, and world() / worldPtr() return the copy from then on.
   // Ids are scene::World's (a constructed world's pieces have ids 0 .. n-1).
@@ -405,7 +232,7 @@ class MddScene {
   /// find the first contact (all candidate pairs); otherwise stop at any.
   SweepResult sweep(const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W, bool first_contact = true) const;
 
-  /// The robot's motion along an edge (see the file comment and EdgeQuery).
+  /// The robot's motion along an edge (see EdgeQuery and docs/design/rotating-edges.md).
   /// kValidity, and kLastValid on rotating edges, first test a few states
   /// with the true pieces (probeStatesCollide: the end and the middle, on
   /// rotating edges also the quarters; a collision there settles
@@ -460,7 +287,7 @@ class MddScene {
     std::unique_ptr<std::once_flag[]> once;
     std::unique_ptr<std::optional<scene::Piece>[]> pieces;
   };
-  /// Rotating edges (see the file comment); mdd_scene_rotation.cpp. With
+  /// Rotating edges (docs/design/rotating-edges.md); mdd_scene_rotation.cpp. With
   /// kLastValid, only the contact bound of checkEdge's kLastValid (its verdict
   /// is computed before): out->collides is false when no enlarged piece at
   /// the level its triple reached touches.
@@ -521,7 +348,7 @@ Obb rotationSweptBox(const Obb& box_R, const Eigen::Isometry3d& X_WR, const Eige
                      double any);
 
 /// How a part of the robot moves over a time interval of a rotating edge, as
-/// a straight sweep plus a growth (see the file comment, "Chord sweep"): the
+/// a straight sweep plus a growth (docs/design/rotating-edges.md, "The chord sweep"): the
 /// part's points at time ta + s (tb - ta), s in [0, 1], lie within `across`
 /// (a displacement perpendicular to the axis) plus `any` (any direction) of
 /// the part with the body frame R at X_WR_start, translated by s v_W.
@@ -544,7 +371,7 @@ struct PartSweep {
 /// whose rotation about the unit axis_R turns by half_angle (>= 0) either
 /// way of R(tm); `rho` (>= 0) bounds the points' distance from the body
 /// origin (it gives the slerp round-off part and caps the arc's growth). Of
-/// the two sweeps of the file comment's argument (the arc as a disk growth,
+/// the two sweeps of docs/design/rotating-edges.md (the arc as a disk growth,
 /// the chord as a sweep), the one with less growth.
 PartSweep partSweep(const Eigen::Vector3d& centre_R, double radius, double rho, const Eigen::Vector3d& axis_R,
                     double half_angle, const Eigen::Isometry3d& X_WI, const Eigen::Vector3d& v_W);

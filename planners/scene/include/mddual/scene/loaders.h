@@ -33,7 +33,7 @@ namespace mddual::scene {
 /// bounding-box diagonal. 1e-4 (0.1 mm on a 1 m part) is far above the
 /// round-off of the formats meshes come in (32-bit floats: 6e-8 relative;
 /// ASCII STL's six significant digits: 5e-7) and of exporters that leave
-/// quads slightly non-planar (issue 10: rocks off by up to 3e-4), and far
+/// quads slightly non-planar (the convex_field rocks were off by up to 3e-4), and far
 /// below what planning resolves (OMPL checks motions every 1e-2 of the space's
 /// extent by default). The hull is never smaller than the mesh, so taking it
 /// only adds a skin at most this thick: no collision is lost, while a closed

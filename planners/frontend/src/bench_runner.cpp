@@ -22,6 +22,7 @@
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
+#include "run_text.h"
 
 namespace mddual::planning {
 
@@ -31,15 +32,8 @@ namespace ot = ompl::tools;
 
 namespace {
 
-std::string flag(bool b) {
-  return b ? "1" : "0";
-}
-
-std::string real(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", x);
-  return buf;
-}
+using detail::flag;
+using detail::real;
 
 int parseInt(const std::string& text, const std::string& what) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) {

@@ -31,7 +31,7 @@ bool FclStateValidityChecker::isValid(const ob::State* state) const {
 FclContinuousMotionValidator::FclContinuousMotionValidator(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
                                                            std::shared_ptr<const FclScene> scene,
                                                            const FclCcdOptions& options)
-    : ob::MotionValidator(si), space_(std::move(space)), scene_(std::move(scene)), options_(options) {
+    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)), options_(options) {
   detail::checkCheckerArguments("FclContinuousMotionValidator", "FclScene", si, space_, scene_.get());
   if (options_.num_max_iterations < 2) {
     throw InvalidInputError("FclContinuousMotionValidator: num_max_iterations " +
@@ -39,15 +39,6 @@ FclContinuousMotionValidator::FclContinuousMotionValidator(const ob::SpaceInform
   }
   if (!(options_.toc_err > 0.0)) {
     throw InvalidInputError("FclContinuousMotionValidator: toc_err must be positive");
-  }
-}
-
-void FclContinuousMotionValidator::countOmpl(bool valid) const {
-  std::lock_guard<std::mutex> lock(ompl_counters_mutex_);
-  if (valid) {
-    ++valid_;
-  } else {
-    ++invalid_;
   }
 }
 

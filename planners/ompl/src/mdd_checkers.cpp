@@ -94,18 +94,8 @@ double MddStateValidityChecker::clearance(const ob::State* state) const {
 
 MddMotionValidator::MddMotionValidator(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
                                        std::shared_ptr<const MddScene> scene)
-    : ob::MotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
+    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
   detail::checkCheckerArguments("MddMotionValidator", "scene", si, space_, scene_.get());
-}
-
-void MddMotionValidator::countOmpl(bool valid) const {
-  // OMPL's counters are plain members of the base class: serialise updates.
-  std::lock_guard<std::mutex> lock(ompl_counters_mutex_);
-  if (valid) {
-    ++valid_;
-  } else {
-    ++invalid_;
-  }
 }
 
 EdgeContact MddMotionValidator::evaluate(const ob::State* s1, const ob::State* s2, EdgeQuery query) const {

@@ -13,7 +13,7 @@
 namespace mddual::scene {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using detail::kPi;
 /// Fewest sides of a cylinder's prism (coarser prisms look nothing like a
 /// cylinder even when the tolerance allows them).
 constexpr int kMinCylinderSides = 8;

@@ -25,11 +25,6 @@ struct Entry {
   int line = 0;
 };
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 std::string trim(const std::string& s) {
   const std::size_t first = s.find_first_not_of(" \t\r\f\v");
   if (first == std::string::npos) return "";
@@ -62,7 +57,7 @@ class Reader {
       if (text.empty() || text[0] == ';') continue;
       if (text.front() == '[') {
         if (text.back() != ']') fail(number, "malformed section header " + quote(text));
-        section = lower(trim(text.substr(1, text.size() - 2)));
+        section = detail::lowerCase(trim(text.substr(1, text.size() - 2)));
         if (section != "problem" && section != "benchmark" && section != "planner") {
           fail(number, "unknown section [" + section + "] (expected [problem], [benchmark] or [planner])");
         }
@@ -71,7 +66,7 @@ class Reader {
       }
       const std::size_t eq = text.find('=');
       if (eq == std::string::npos) fail(number, "expected 'key = value', got " + quote(text));
-      Entry e{lower(trim(text.substr(0, eq))), trim(text.substr(eq + 1)), number};
+      Entry e{detail::lowerCase(trim(text.substr(0, eq))), trim(text.substr(eq + 1)), number};
       if (e.key.empty()) fail(number, "empty key");
       if (section.empty()) fail(number, quote(e.key) + " comes before any section");
       (*sections)[section].push_back(std::move(e));
@@ -86,7 +81,7 @@ class Reader {
   }
 
   bool boolean(const Entry& e) const {
-    const std::string v = lower(e.value);
+    const std::string v = detail::lowerCase(e.value);
     if (v == "true" || v == "1" || v == "yes" || v == "on") return true;
     if (v == "false" || v == "0" || v == "no" || v == "off") return false;
     fail(e.line, e.key + ": " + quote(e.value) + " is not true or false");
@@ -278,7 +273,7 @@ void readBenchmark(const Reader& r, const std::vector<Entry>& entries, ProblemCo
     } else if (e.key == "output") {
       c->output = e.value;
     } else if (e.key == "save_paths") {
-      const std::string v = lower(e.value);
+      const std::string v = detail::lowerCase(e.value);
       if (v == "none") {
         c->save_paths = SavePaths::kNone;
       } else if (v == "all") {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -13,6 +14,16 @@
 #include "mddual/scene/scene.h"
 
 namespace mddual::scene::detail {
+
+/// One definition for the scene sources (built as unity batches, where two
+/// files' definitions would clash).
+inline constexpr double kPi = 3.14159265358979323846;
+
+/// `s` in lower case (ASCII).
+inline std::string lowerCase(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
 
 /// "'text'", control bytes shown as '?' (clipForMessage, not cut: it also
 /// quotes the file names in piece names).

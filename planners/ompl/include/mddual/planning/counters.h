@@ -3,9 +3,12 @@
 // during checks sees some recent value of each counter).
 #pragma once
 
+#include <ompl/base/MotionValidator.h>
+
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <mutex>
 
 namespace mddual::planning {
 
@@ -76,6 +79,34 @@ class CheckerCounters {
   std::atomic<std::uint64_t> sub_edges_{0};
   std::atomic<std::uint64_t> nanoseconds_{0};
   std::atomic<bool> timing_{true};
+};
+
+/// The base of our motion validators: our CheckerCounters, and OMPL's own
+/// valid/invalid motion counts (plain members of ompl::base::MotionValidator)
+/// updated under a mutex, since OMPL may call checkMotion from several
+/// threads.
+class CountedMotionValidator : public ompl::base::MotionValidator {
+ public:
+  using ompl::base::MotionValidator::MotionValidator;
+  CheckerCounts counts() const { return counters_.read(); }
+  void resetCounts() { counters_.reset(); }
+  /// Whether counts().seconds is measured (see CheckerCounters::setTiming).
+  void setTiming(bool on) { counters_.setTiming(on); }
+
+ protected:
+  /// Counts one checkMotion result in OMPL's counters.
+  void countOmpl(bool valid) const {
+    std::lock_guard<std::mutex> lock(ompl_counters_mutex_);
+    if (valid) {
+      ++valid_;
+    } else {
+      ++invalid_;
+    }
+  }
+  mutable CheckerCounters counters_;
+
+ private:
+  mutable std::mutex ompl_counters_mutex_;
 };
 
 }  // namespace mddual::planning

@@ -132,7 +132,7 @@ class FclStateValidityChecker : public ompl::base::StateValidityChecker {
 };
 
 /// Motion validity with fcl::continuousCollide (see the file comment).
-class FclContinuousMotionValidator : public ompl::base::MotionValidator {
+class FclContinuousMotionValidator : public CountedMotionValidator {
  public:
   /// Throws InvalidInputError for a null argument, a mismatched state space
   /// or options out of range (num_max_iterations < 2, toc_err <= 0).
@@ -141,20 +141,14 @@ class FclContinuousMotionValidator : public ompl::base::MotionValidator {
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
-  CheckerCounts counts() const { return counters_.read(); }
-  void resetCounts() { counters_.reset(); }
-  /// Whether counts().seconds is measured (see CheckerCounters::setTiming).
-  void setTiming(bool on) { counters_.setTiming(on); }
   const FclCcdOptions& options() const { return options_; }
 
  private:
   FclScene::Continuous run(const ompl::base::State* s1, const ompl::base::State* s2) const;
-  void countOmpl(bool valid) const;
 
   PlanningSpacePtr space_;
   std::shared_ptr<const FclScene> scene_;
   FclCcdOptions options_;
-  mutable CheckerCounters counters_;
   mutable std::mutex ompl_counters_mutex_;
 };
 

@@ -110,7 +110,7 @@ class MddStateValidityChecker : public ompl::base::StateValidityChecker {
 ///     failing coarse sub-edge is settled by a true colliding state before it
 ///     is refined). These shortcuts only ever return "invalid" for an edge
 ///     with a colliding state, so both overloads give the same answer.
-class MddMotionValidator : public ompl::base::MotionValidator {
+class MddMotionValidator : public CountedMotionValidator {
  public:
   /// Throws InvalidInputError like MddStateValidityChecker.
   MddMotionValidator(const ompl::base::SpaceInformationPtr& si, PlanningSpacePtr space,
@@ -129,10 +129,6 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   EdgeContact firstInvalid(const ompl::base::State* s1, const ompl::base::State* s2,
                            EdgeQuery query = EdgeQuery::kFirstContact) const;
 
-  CheckerCounts counts() const { return counters_.read(); }
-  void resetCounts() { counters_.reset(); }
-  /// Whether counts().seconds is measured (see CheckerCounters::setTiming).
-  void setTiming(bool on) { counters_.setTiming(on); }
   const MddScene& scene() const { return *scene_; }
   const PlanningSpace& planningSpace() const { return *space_; }
 
@@ -158,12 +154,9 @@ class MddMotionValidator : public ompl::base::MotionValidator {
   /// state at the discarded fraction (setDiscardedLastValidFraction) or, when
   /// that is 0, one step of OMPL's discrete check into the edge collides.
   bool blockedEarly(const ompl::base::State* s1, const ompl::base::State* s2) const;
-  void countOmpl(bool valid) const;
 
   PlanningSpacePtr space_;
   std::shared_ptr<const MddScene> scene_;
-  mutable CheckerCounters counters_;
-  mutable std::mutex ompl_counters_mutex_;
   std::atomic<double> discarded_fraction_{0.0};
 };
 

@@ -31,7 +31,7 @@ BASE_HEIGHT = 0.15
 FINGER_TRAVEL = 0.04
 # Links whose mesh has a waist (non-convex); the others are convex.
 WAISTED = {"link2", "link4"}
-READY = [0.0, -0.5, 0.0, -2.0, 0.0, 1.6, 0.8]
+READY = [0.0, -0.3, 0.0, -1.2, 0.0, 1.4, 0.8]
 
 
 def fmt(x):
@@ -46,6 +46,12 @@ def vec(v):
 def link_mesh(length, radius, waisted):
     """A revolved body along +z from 0 to `length`, rounded ends; with a
     waist (70% of the radius at mid-length) when `waisted`."""
+    return meshgen.revolve(link_profile(length, radius, waisted), 16)
+
+
+def link_profile(length, radius, waisted):
+    """The (r, z) profile of link_mesh, from the axis at z = 0 to the axis
+    at z = length."""
     profile = [(0.0, 0.0)]
     caps = 4
     for k in range(1, caps + 1):  # lower cap, a quarter circle
@@ -62,7 +68,7 @@ def link_mesh(length, radius, waisted):
         a = 0.5 * math.pi * k / caps
         profile.append((radius * math.sin(a), length - radius * (1 - math.cos(a)) * 0.5))
     profile.append((0.0, length))
-    return meshgen.revolve(profile, 16)
+    return profile
 
 
 def collision(geometry, xyz=(0, 0, 0), rpy=(0, 0, 0)):
@@ -125,11 +131,17 @@ def urdf_text(files, folder):
     return "\n".join(lines) + "\n"
 
 
-def srdf_text():
+def disabled_pairs():
+    """The link pairs the SRDF exempts from the self check: those that touch
+    in every configuration (adjacent links, the hand and its fingers)."""
     names = ["base"] + ["link%d" % i for i in range(1, 8)] + ["hand", "finger_left", "finger_right"]
-    adjacent = [(names[i], names[i + 1]) for i in range(8)]
-    adjacent += [("link7", "hand"), ("hand", "finger_left"), ("hand", "finger_right"),
-                 ("link7", "finger_left"), ("link7", "finger_right"), ("link6", "hand")]
+    pairs = [(names[i], names[i + 1]) for i in range(8)]
+    return pairs + [("hand", "finger_left"), ("hand", "finger_right"), ("link7", "finger_left"),
+                    ("link7", "finger_right"), ("link6", "hand")]
+
+
+def srdf_text():
+    adjacent = disabled_pairs()
     lines = ['<?xml version="1.0"?>', '<!-- mddual\'s own 7-joint arm (scripts/arm_configs.py) -->',
              '<robot name="arm7">',
              '  <virtual_joint name="world_joint" type="fixed" parent_frame="world" child_link="base"/>',
@@ -150,6 +162,8 @@ def srdf_text():
 
 
 def arm7(files):
+    import arm_problems  # noqa: E402 (it imports this module)
     folder = "arm7/"
     files[folder + "arm7.urdf"] = urdf_text(files, folder)
     files[folder + "arm7.srdf"] = srdf_text()
+    arm_problems.problems(files, folder)

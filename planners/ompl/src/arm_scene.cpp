@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "constants.h"
 #include "mddual/distance.h"
 #include "mddual/error.h"
 #include "mddual/query.h"
@@ -12,7 +13,7 @@
 namespace mddual::planning {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 /// Relative growth of a pair's motion bound and of its free window: covers
 /// the round-off of forward kinematics and of the bound's own sums.
 constexpr double kRateSlackRel = 1e-9;
@@ -46,7 +47,7 @@ struct ArmScene::EdgeWork {
 };
 
 ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_ptr<const scene::World> world,
-                   scene::SelfCollisionFilter filter, const Eigen::Isometry3d& X_WB, const ArmSceneOptions& options)
+                   scene::AllowedCollisions filter, const Eigen::Isometry3d& X_WB, const ArmSceneOptions& options)
     : model_(std::move(model)), world_(std::move(world)), filter_(std::move(filter)), X_WB_(X_WB), options_(options) {
   if (!model_) throw InvalidInputError("ArmScene: null robot model");
   if (!world_) throw InvalidInputError("ArmScene: null world");
@@ -84,7 +85,7 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
   };
   if (!world_->pieces().empty()) {
     for (int k = 0; k < nl; ++k) {
-      if (model_->link(k).pieces.empty()) continue;
+      if (model_->link(k).pieces.empty() || filter_.allowedWithWorld(k)) continue;
       Pair pair;
       pair.link = k;
       pair.reach.assign(static_cast<std::size_t>(nv), 0.0);

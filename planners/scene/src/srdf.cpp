@@ -183,10 +183,12 @@ std::vector<std::pair<int, double>> groupStateValues(const Srdf& srdf, const Rob
   throw SceneError(srdf.source + ": no group_state " + quote(state) + " of group " + quote(group));
 }
 
-SelfCollisionFilter::SelfCollisionFilter(const RobotModel& model)
-    : n_(model.numLinks()), allowed_(static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_), 0) {}
+AllowedCollisions::AllowedCollisions(const RobotModel& model)
+    : n_(model.numLinks()),
+      allowed_(static_cast<std::size_t>(n_) * static_cast<std::size_t>(n_), 0),
+      world_(static_cast<std::size_t>(n_), 0) {}
 
-SelfCollisionFilter::SelfCollisionFilter(const RobotModel& model, const Srdf& srdf) : SelfCollisionFilter(model) {
+AllowedCollisions::AllowedCollisions(const RobotModel& model, const Srdf& srdf) : AllowedCollisions(model) {
   auto linkOf = [&](const std::string& name, const char* element) {
     const int k = model.findLink(name);
     if (k < 0) {
@@ -206,7 +208,7 @@ SelfCollisionFilter::SelfCollisionFilter(const RobotModel& model, const Srdf& sr
   }
 }
 
-void SelfCollisionFilter::allow(int k, int l, bool allowed) {
+void AllowedCollisions::allow(int k, int l, bool allowed) {
   allowed_[index(k, l)] = allowed ? 1 : 0;
   allowed_[index(l, k)] = allowed ? 1 : 0;
 }

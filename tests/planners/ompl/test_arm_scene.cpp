@@ -10,60 +10,21 @@
 #include <cmath>
 #include <random>
 
+#include "arm_fixture.h"
 #include "mddual/distance.h"
 #include "mddual/planning/arm_scene.h"
 #include "mddual/query.h"
 #include "mddual/scene/loaders.h"
-#include "test_support.h"
 
 namespace mddual::planning {
 namespace {
 
+using testing::ArmFixture;
+using testing::armWorld;
+using testing::denseFirstContact;
+using testing::makeArm;
+using testing::randomConfiguration;
 using testing::Rng;
-
-const std::filesystem::path kArm7Dir = std::filesystem::path(MDDUAL_CONFIGS_DIR) / "arm7";
-
-/// A table top, a thin wall (2 mm, far thinner than a motion-check step at
-/// OMPL's default resolution for this arm), a bar across the workspace and
-/// a post.
-std::shared_ptr<const scene::World> armWorld() {
-  auto at = [](double x, double y, double z) {
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    X.translation() = Eigen::Vector3d(x, y, z);
-    return X;
-  };
-  std::vector<scene::Piece> pieces;
-  pieces.push_back(scene::boxPiece(Eigen::Vector3d(0.5, 0.8, 0.03), at(0.65, 0.0, 0.35), "table"));
-  pieces.push_back(scene::boxPiece(Eigen::Vector3d(0.6, 0.002, 0.6), at(0.2, 0.45, 0.5), "thin wall"));
-  Eigen::Isometry3d bar = at(-0.3, 0.0, 0.9);
-  bar.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
-  pieces.push_back(
-      scene::cylinderPiece(0.02, 1.2, bar * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()), 1e-3, "bar"));
-  pieces.push_back(scene::boxPiece(Eigen::Vector3d(0.05, 0.05, 1.0), at(-0.35, -0.4, 0.5), "post"));
-  return std::make_shared<const scene::World>(std::move(pieces), "arm world");
-}
-
-struct ArmFixture {
-  std::shared_ptr<const scene::RobotModel> model;
-  std::shared_ptr<ArmScene> scene;
-};
-
-ArmFixture makeArm() {
-  ArmFixture f;
-  f.model = std::make_shared<const scene::RobotModel>(scene::loadRobotModel(kArm7Dir / "arm7.urdf"));
-  const scene::Srdf srdf = scene::loadSrdf(kArm7Dir / "arm7.srdf");
-  f.scene = std::make_shared<ArmScene>(f.model, armWorld(), scene::SelfCollisionFilter(*f.model, srdf));
-  return f;
-}
-
-std::vector<double> randomConfiguration(const scene::RobotModel& model, Rng& rng) {
-  std::vector<double> q(static_cast<std::size_t>(model.numVariables()));
-  for (int v = 0; v < model.numVariables(); ++v) {
-    const scene::Joint& j = model.joint(model.variableJoint(v));
-    q[static_cast<std::size_t>(v)] = std::uniform_real_distribution<double>(j.lower, j.upper)(rng);
-  }
-  return q;
-}
 
 /// Every pair of pieces the scene checks, tested one by one with the core.
 bool bruteCollides(const ArmScene& s, const std::vector<double>& q) {
@@ -119,18 +80,6 @@ TEST(ArmScene, StateChecksMatchTheBruteForce) {
   EXPECT_LT(colliding, n * 9 / 10) << "too few free samples to test the check";
 }
 
-/// The dense reference: the first of `steps` + 1 evenly spaced states that
-/// collides (its fraction), or +infinity.
-double denseFirstContact(const ArmScene& s, const std::vector<double>& q0, const std::vector<double>& q1, int steps) {
-  std::vector<double> q(q0.size());
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    for (std::size_t v = 0; v < q.size(); ++v) q[v] = q0[v] + t * (q1[v] - q0[v]);
-    if (s.collides(q.data())) return t;
-  }
-  return testing::kInf;
-}
-
 TEST(ArmScene, EdgeChecksAreCertified) {
   const ArmFixture f = makeArm();
   Rng rng(testing::seed() + 1);
@@ -170,11 +119,11 @@ TEST(ArmScene, EdgeChecksAreCertified) {
 
 TEST(ArmScene, RejectsBadInput) {
   const ArmFixture f = makeArm();
-  EXPECT_THROW(ArmScene(nullptr, armWorld(), scene::SelfCollisionFilter()), InvalidInputError);
-  EXPECT_THROW(ArmScene(f.model, armWorld(), scene::SelfCollisionFilter()), InvalidInputError);
+  EXPECT_THROW(ArmScene(nullptr, armWorld(), scene::AllowedCollisions()), InvalidInputError);
+  EXPECT_THROW(ArmScene(f.model, armWorld(), scene::AllowedCollisions()), InvalidInputError);
   ArmSceneOptions bad;
   bad.contact_distance = 0.0;
-  EXPECT_THROW(ArmScene(f.model, armWorld(), scene::SelfCollisionFilter(*f.model), Eigen::Isometry3d::Identity(), bad),
+  EXPECT_THROW(ArmScene(f.model, armWorld(), scene::AllowedCollisions(*f.model), Eigen::Isometry3d::Identity(), bad),
                InvalidInputError);
   std::vector<double> q0 = f.model->defaultConfiguration();
   std::vector<double> q1 = q0;

@@ -33,9 +33,9 @@ TEST(Srdf, ResolvesTheGroupsOfArm7) {
   const auto ready = groupStateValues(srdf, model, "arm", "ready");
   ASSERT_EQ(ready.size(), 7u);
   EXPECT_EQ(model.variableName(ready[3].first), "joint4");
-  EXPECT_DOUBLE_EQ(ready[3].second, -2.0);
+  EXPECT_DOUBLE_EQ(ready[3].second, -1.2);
 
-  const SelfCollisionFilter filter(model, srdf);
+  const AllowedCollisions filter(model, srdf);
   EXPECT_TRUE(filter.allowed(model.linkIndex("link3"), model.linkIndex("link2")));
   EXPECT_TRUE(filter.allowed(model.linkIndex("hand"), model.linkIndex("finger_left")));
   EXPECT_FALSE(filter.allowed(model.linkIndex("link2"), model.linkIndex("link4")));
@@ -50,7 +50,7 @@ TEST(Srdf, CollisionMatrixDefaultsAndReenables) {
     <enable_collisions link1="hand" link2="link2"/>
     <disable_collisions link1="link1" link2="link5"/></robot>)",
                               "m.srdf");
-  const SelfCollisionFilter filter(model, srdf);
+  const AllowedCollisions filter(model, srdf);
   int skipped = 0;
   for (int l = 0; l < model.numLinks(); ++l) skipped += filter.allowed(model.linkIndex("hand"), l) ? 1 : 0;
   EXPECT_EQ(skipped, model.numLinks() - 1);  // all but link2
@@ -89,7 +89,7 @@ TEST(SrdfErrors, NameTheFileElementAndName) {
   expectSceneError([&] { groupVariables(group(R"(<group name="g"><link name="base"/></group>)"), model, "g"); },
                    {"group 'g'", "an empty group"});
   expectSceneError([&] { groupVariables(group(""), model, "arm"); }, {"g.srdf: no group 'arm'"});
-  expectSceneError([&] { SelfCollisionFilter(model, group(R"(<disable_collisions link1="base" link2="paw"/>)")); },
+  expectSceneError([&] { AllowedCollisions(model, group(R"(<disable_collisions link1="base" link2="paw"/>)")); },
                    {"g.srdf", "<disable_collisions>", "link 'paw'"});
   expectSceneError([&] { groupStateValues(group(""), model, "arm", "home"); }, {"no group_state 'home'"});
 }

@@ -7,8 +7,9 @@
 // a link's pieces are in its own frame L, at X_WL = X_WB X_BL(q).
 //
 // Pairs checked (touching counts as collision, as everywhere in mddual):
-// every link with collision pieces against the world, and every pair of
-// such links that the SelfCollisionFilter does not skip.
+// every link with collision pieces against the world (unless the
+// AllowedCollisions lets it touch the world), and every pair of such links
+// that the AllowedCollisions does not skip.
 //
 // Contract of checkEdge (the proof: docs/design/arms.md). The edge is
 // q(t) = q0 + t (q1 - q0), t in [0, 1], in variable space (OMPL's
@@ -79,12 +80,12 @@ class ArmScene {
   /// Throws InvalidInputError for a null model or world, a filter of another
   /// size than the model, a non-finite X_WB or bad options.
   ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_ptr<const scene::World> world,
-           scene::SelfCollisionFilter filter, const Eigen::Isometry3d& X_WB = Eigen::Isometry3d::Identity(),
+           scene::AllowedCollisions filter, const Eigen::Isometry3d& X_WB = Eigen::Isometry3d::Identity(),
            const ArmSceneOptions& options = ArmSceneOptions());
 
   const scene::RobotModel& model() const { return *model_; }
   const scene::World& world() const { return *world_; }
-  const scene::SelfCollisionFilter& filter() const { return filter_; }
+  const scene::AllowedCollisions& filter() const { return filter_; }
   const Eigen::Isometry3d& baseInWorld() const { return X_WB_; }
   const ArmSceneOptions& options() const { return options_; }
   /// The link pairs the self check tests (k < l).
@@ -143,7 +144,7 @@ class ArmScene {
 
   std::shared_ptr<const scene::RobotModel> model_;
   std::shared_ptr<const scene::World> world_;
-  scene::SelfCollisionFilter filter_;
+  scene::AllowedCollisions filter_;
   Eigen::Isometry3d X_WB_;
   ArmSceneOptions options_;
   Bvh world_tree_;

@@ -6,7 +6,7 @@
 // skipped.
 //
 // Names are kept as written; resolving them against a RobotModel
-// (groupVariables, SelfCollisionFilter) checks every name and throws
+// (groupVariables, AllowedCollisions) checks every name and throws
 // SceneError naming the SRDF, the element and the unknown name.
 //
 // Thread safety: plain data; the functions are pure.
@@ -87,27 +87,32 @@ std::vector<int> groupVariables(const Srdf& srdf, const RobotModel& model, const
 std::vector<std::pair<int, double>> groupStateValues(const Srdf& srdf, const RobotModel& model,
                                                      const std::string& group, const std::string& state);
 
-/// Which link pairs the self-collision check skips: the SRDF's collision
-/// matrix plus any pair added later (a scene's allowed collision matrix).
-/// Links are RobotModel link indices.
-class SelfCollisionFilter {
+/// Which contacts the collision checks skip (MoveIt's allowed collision
+/// matrix): link pairs of the self check (the SRDF's collision matrix plus
+/// any pair added later, such as a scene's matrix) and links allowed to touch
+/// the world. Links are RobotModel link indices.
+class AllowedCollisions {
  public:
-  SelfCollisionFilter() = default;
+  AllowedCollisions() = default;
   /// An empty filter for `model` (every pair checked).
-  explicit SelfCollisionFilter(const RobotModel& model);
+  explicit AllowedCollisions(const RobotModel& model);
   /// The SRDF's matrix on `model`; throws SceneError naming the SRDF, the
   /// element and the link for a link the model does not have.
-  SelfCollisionFilter(const RobotModel& model, const Srdf& srdf);
+  AllowedCollisions(const RobotModel& model, const Srdf& srdf);
   /// Skip (or check) the pair k, l.
   void allow(int k, int l, bool allowed = true);
   /// Whether the pair k, l is skipped.
   bool allowed(int k, int l) const { return allowed_[index(k, l)] != 0; }
+  /// Skip (or check) link k against the world.
+  void allowWithWorld(int k, bool allowed = true) { world_[static_cast<std::size_t>(k)] = allowed ? 1 : 0; }
+  bool allowedWithWorld(int k) const { return world_[static_cast<std::size_t>(k)] != 0; }
   int numLinks() const { return n_; }
 
  private:
   std::size_t index(int k, int l) const { return static_cast<std::size_t>(k) * static_cast<std::size_t>(n_) + l; }
   int n_ = 0;
   std::vector<char> allowed_;
+  std::vector<char> world_;
 };
 
 }  // namespace mddual::scene

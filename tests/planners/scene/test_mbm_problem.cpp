@@ -1,0 +1,201 @@
+// MotionBenchMaker problems: scenes and requests as MotionBenchMaker writes
+// them (sequences for points, primitive types by name), the map and number
+// spellings MoveIt's messages also use, frames, the allowed collision
+// matrix, and every malformed field named with its file and path.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mddual/scene/mbm_problem.h"
+#include "scene_test_util.h"
+
+namespace mddual::scene {
+namespace {
+
+using testing::expectSceneError;
+using testing::TempDir;
+
+const std::filesystem::path kArm7Urdf = std::filesystem::path(MDDUAL_CONFIGS_DIR) / "arm7" / "arm7.urdf";
+
+const char* kScene = R"(name: shelf
+robot_state:
+  joint_state:
+    name: [joint1, joint2, finger_left_joint]
+    position: [0.1, -0.2, 0.03]
+robot_model_name: arm7
+fixed_frame_transforms:
+  - header: {frame_id: world}
+    child_frame_id: base
+    transform:
+      translation: [0, 0, 0]
+      rotation: [0, 0, 0, 1]
+  - child_frame_id: shelf_frame
+    transform:
+      translation: {x: 1.0, y: 0.0, z: 0.0}
+      rotation: {x: 0, y: 0, z: 0.7071067811865476, w: 0.7071067811865476}
+allowed_collision_matrix:
+  entry_names: [base, link1, board]
+  entry_values:
+    - enabled: [false, true, true]
+    - enabled: [true, false, false]
+    - enabled: [true, false, false]
+world:
+  collision_objects:
+    - header: {frame_id: world}
+      id: board
+      primitives:
+        - type: box
+          dimensions: [0.4, 0.6, 0.02]
+        - type: 3
+          dimensions: [0.5, 0.05]
+      primitive_poses:
+        - position: [0.6, 0, 0.5]
+          orientation: [0, 0, 0, 1]
+        - position: {x: 0.6, y: 0.3, z: 0.25}
+          orientation: {x: 0, y: 0, z: 0, w: 1}
+    - header: {frame_id: shelf_frame}
+      id: ball
+      primitives:
+        - type: sphere
+          dimensions: [0.05]
+      primitive_poses:
+        - position: [0.2, 0, 0]
+    - header: {frame_id: link7}
+      id: tool
+      primitives:
+        - type: cone
+          dimensions: [0.1, 0.02]
+      primitive_poses:
+        - position: [0, 0, 0.3]
+      meshes:
+        - vertices: [[0, 0, 0], [0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.1]]
+          triangles: [[0, 2, 1], [0, 1, 3], [0, 3, 2], {vertex_indices: [1, 2, 3]}]
+      mesh_poses:
+        - position: [0, 0, 0.5]
+          orientation: [0, 0, 0, 1]
+)";
+
+const char* kRequest = R"(planner_id: RRTConnectkConfigDefault
+group_name: arm
+allowed_planning_time: 60
+start_state:
+  joint_state:
+    name: [joint1, joint2, joint3, joint4, joint5, joint6, joint7]
+    position: [0, 0.1, 0, -1.5, 0, 1.6, 0]
+goal_constraints:
+  - joint_constraints:
+      - joint_name: joint1
+        position: 1.0
+        tolerance_above: 0.001
+        tolerance_below: 0.001
+        weight: 1
+      - {joint_name: joint4, position: -2.0}
+)";
+
+TEST(MbmProblem, ReadsASceneAsMotionBenchMakerWritesIt) {
+  TempDir dir;
+  const RobotModel model = loadRobotModel(kArm7Urdf);
+  const MbmScene scene = loadMbmScene(dir.write("scene0001.yaml", kScene), model);
+  ASSERT_EQ(scene.pieces.size(), 5u);  // box, cylinder, sphere, cone, one convex mesh
+  EXPECT_NE(scene.pieces[0].origin.find("scene0001.yaml: object 'board', primitive 0 (box)"), std::string::npos);
+  EXPECT_TRUE(scene.pieces[0].box.center().isApprox(Eigen::Vector3d(0.6, 0, 0.5), 1e-12));
+  EXPECT_NEAR(scene.pieces[0].box.sizes().x(), 0.4, 1e-12);
+  // The cylinder: [height, radius], along z.
+  EXPECT_NEAR(scene.pieces[1].box.sizes().z(), 0.5, 1e-12);
+  EXPECT_NEAR(scene.pieces[1].box.sizes().x(), 0.1, 2e-3);
+  // The ball in the shelf frame: turned 90 degrees about z, then 0.2 along its x.
+  EXPECT_TRUE(scene.pieces[2].box.center().isApprox(Eigen::Vector3d(1.0, 0.2, 0.0), 1e-9));
+  // The tool in link7's frame at the scene's robot_state.
+  std::vector<double> q = model.defaultConfiguration();
+  q[0] = 0.1;
+  q[1] = -0.2;
+  q[7] = 0.03;
+  const Eigen::Isometry3d X_W7 = model.linkPoses(q)[static_cast<std::size_t>(model.linkIndex("link7"))];
+  const Eigen::Vector3d apex = X_W7 * Eigen::Vector3d(0, 0, 0.35);
+  double nearest = 1.0;
+  for (const Eigen::Vector3d& v : scene.pieces[3].polytope.vertices()) nearest = std::min(nearest, (v - apex).norm());
+  EXPECT_LT(nearest, 1e-9);
+  // The matrix: the link pair (both ways), and base allowed to touch one
+  // object of three, which is warned about and not honoured.
+  ASSERT_EQ(scene.allowed_link_pairs.size(), 2u);
+  EXPECT_TRUE(scene.links_allowed_with_world.empty());
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("link 'base' is allowed to touch some objects only"), std::string::npos);
+}
+
+TEST(MbmProblem, ReadsARequest) {
+  TempDir dir;
+  const MbmRequest r = loadMbmRequest(dir.write("request0001.yaml", kRequest));
+  EXPECT_EQ(r.group, "arm");
+  EXPECT_EQ(r.planner_id, "RRTConnectkConfigDefault");
+  EXPECT_DOUBLE_EQ(r.allowed_planning_time, 60.0);
+  ASSERT_EQ(r.start.size(), 7u);
+  EXPECT_DOUBLE_EQ(r.start[3].second, -1.5);
+  ASSERT_EQ(r.goal.size(), 2u);
+  EXPECT_EQ(r.goal[1].joint, "joint4");
+  EXPECT_DOUBLE_EQ(r.goal[1].position, -2.0);
+  EXPECT_DOUBLE_EQ(r.goal[0].tolerance_above, 0.001);
+}
+
+TEST(MbmProblem, ListsTheProblemsOfADirectory) {
+  TempDir dir;
+  dir.write("p/scene0002.yaml", kScene);
+  dir.write("p/request0002.yaml", kRequest);
+  dir.write("p/scene0001.yaml", kScene);
+  dir.write("p/request0001.yaml", kRequest);
+  dir.write("p/notes.txt", "other files are ignored");
+  const std::vector<MbmProblemFiles> problems = listMbmProblems(dir.path() / "p");
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_EQ(problems[0].number, 1);
+  EXPECT_EQ(problems[1].request.filename(), "request0002.yaml");
+  dir.write("p/scene0003.yaml", kScene);
+  expectSceneError([&] { listMbmProblems(dir.path() / "p"); }, {"scene0003.yaml", "no request file"});
+  expectSceneError([&] { listMbmProblems(dir.path() / "empty_dir_missing"); }, {"not a directory"});
+  std::filesystem::create_directories(dir.path() / "none");
+  expectSceneError([&] { listMbmProblems(dir.path() / "none"); }, {"no problems"});
+}
+
+TEST(MbmProblemErrors, NameTheFileAndTheField) {
+  TempDir dir;
+  const RobotModel model = loadRobotModel(kArm7Urdf);
+  auto scene = [&](const std::string& text) { return loadMbmScene(dir.write("scene0009.yaml", text), model); };
+  auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  expectSceneError([&] { scene("world: [unclosed"); }, {"scene0009.yaml: not valid YAML (line"});
+  expectSceneError(
+      [&] { scene(replaced(kScene, "dimensions: [0.4, 0.6, 0.02]", "dimensions: [0.4, 0.6]")); },
+      {"scene0009.yaml: world.collision_objects[0].primitives[0].dimensions: a box needs 3 values, got 2"});
+  expectSceneError([&] { scene(replaced(kScene, "type: sphere", "type: capsule")); },
+                   {"world.collision_objects[1].primitives[0].type", "unknown primitive type 'capsule'"});
+  expectSceneError([&] { scene(replaced(kScene, "frame_id: link7", "frame_id: gripper_tip")); },
+                   {"world.collision_objects[2].header.frame_id: unknown frame 'gripper_tip'"});
+  expectSceneError([&] { scene(replaced(kScene, "name: [joint1,", "name: [elbow,")); },
+                   {"scene0009.yaml: robot_state: joint 'elbow' is not in robot 'arm7'"});
+  expectSceneError([&] { scene(replaced(kScene, "position: [0.1, -0.2, 0.03]", "position: [0.1, -0.2]")); },
+                   {"robot_state.joint_state.position: has 2 values for 3 names"});
+  expectSceneError([&] { scene(replaced(kScene, "orientation: [0, 0, 0, 1]", "orientation: [0, 0, 0, 0]")); },
+                   {"primitive_poses[0].orientation: is not a rotation"});
+  expectSceneError([&] { scene(replaced(kScene, "[0.6, 0, 0.5]", "[0.6, zero, 0.5]")); },
+                   {"primitive_poses[0].position[1]: is not a number"});
+  expectSceneError([&] { scene(replaced(kScene, "{vertex_indices: [1, 2, 3]}", "[1, 2, 7]")); },
+                   {"meshes[0].triangles[3]", "vertex index 7"});
+  expectSceneError([&] { scene(replaced(kScene, "- enabled: [true, false, false]\n", "- enabled: [true]\n")); },
+                   {"allowed_collision_matrix.entry_values[1].enabled: needs 3 values"});
+  auto request = [&](const std::string& text) { return loadMbmRequest(dir.write("request0009.yaml", text)); };
+  expectSceneError([&] { request(replaced(kRequest, "group_name: arm\n", "")); },
+                   {"request0009.yaml: group_name: missing"});
+  expectSceneError([&] { request(replaced(kRequest, "position: 1.0", "position: .nan")); },
+                   {"goal_constraints[0].joint_constraints[0].position: is not finite"});
+  expectSceneError([&] { request("group_name: arm\n"); }, {"goal_constraints: missing"});
+  expectSceneError(
+      [&] {
+        applyJointValues(model, model.defaultConfiguration(), {{"wrist", 0.0}}, "x.yaml: start");
+      },
+      {"x.yaml: start: joint 'wrist' is not in robot 'arm7'"});
+}
+
+}  // namespace
+}  // namespace mddual::scene

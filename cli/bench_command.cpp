@@ -35,6 +35,7 @@
 
 #include "commands.h"
 #include "mddual/error.h"
+#include "mddual/planning/arm_bench.h"
 #include "mddual/planning/bench_logs.h"
 #include "mddual/planning/bench_runner.h"
 
@@ -62,7 +63,7 @@ constexpr int kTimedOut = -2;
 
 struct BenchFlags {
   std::string config;
-  std::string checkers = "mdd,fcl,fcl-continuous";
+  std::string checkers;  ///< empty: every checker of the problem's kind
   std::string planners;
   std::string runs;
   std::string time_limit;
@@ -72,6 +73,12 @@ struct BenchFlags {
   std::string report;
   std::string report_timeout;
   std::string last_valid_level;
+  // Arm problems (a MotionBenchMaker directory instead of a cfg).
+  std::string robot;
+  std::string srdf;
+  std::string group;
+  std::string problems;
+  std::vector<std::string> package_path;
 };
 
 // ---- Small parsers (one clear line per error) --------------------------------------
@@ -491,17 +498,88 @@ void runBenchReport(const std::string& dir, double timeout) {
   buildReport(tools, dir, logs);
 }
 
+/// `mddual bench PROBLEM_DIR --robot URDF --srdf SRDF`: the arm benchmark.
+void runArmBenchCommand(const BenchFlags& f) {
+  if (f.robot.empty() || f.srdf.empty()) {
+    throw FatalError("bench: " + f.config + " is a problem directory: give --robot URDF and --srdf SRDF");
+  }
+  if (!f.last_valid_level.empty()) throw FatalError("--last-valid-level: applies to cfg problems only");
+  mp::ArmBenchOptions options;
+  try {
+    options.checkers = mp::parseArmCheckerList(f.checkers.empty() ? "mdd,fcl,fcl-fine" : f.checkers);
+    if (!f.shard.empty()) options.shard = mp::parseShard(f.shard);
+  } catch (const InvalidInputError& e) {
+    throw FatalError(std::string("--checkers/--shard: ") + e.what());
+  }
+  if (!f.planners.empty()) options.planners = splitList("--planners", f.planners);
+  if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
+  if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
+  if (!f.problems.empty()) options.problems = static_cast<int>(parsePositiveInt("--problems", f.problems));
+  options.problem.group = f.group;
+  const long seed = parsePositiveInt("--seed", f.seed);
+  const double timeout = reportTimeout("--report-timeout", f.report_timeout);
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::RNG::setSeed(mp::shardSeed(seed, options.shard));
+  const std::string name = fs::absolute(f.config).lexically_normal().filename().string();
+  options.output_dir = f.output.empty() ? fs::path("out") / "bench" / name : fs::path(f.output);
+  std::optional<ReportTools> tools;
+  if (!options.shard.sharded()) {
+    tools = findReportTools();
+    tools->timeout = timeout;
+  }
+  std::vector<mp::ArmBenchLog> logs;
+  try {
+    scene::RobotLoadOptions load;
+    for (const std::string& p : f.package_path) load.package_path.emplace_back(p);
+    const mp::ArmRobot robot = mp::loadArmRobot(f.robot, f.srdf, load);
+    mp::ArmBenchObserver observer;
+    observer.problem_started = [](const std::string& problem, int i, int n) {
+      std::cerr << "bench: problem " << (i + 1) << " of " << n << ": " << problem << "\n";
+    };
+    logs = mp::runArmBench(robot, f.config, options, observer);
+  } catch (const std::exception& e) {
+    throw FatalError(e.what());
+  }
+  std::vector<fs::path> files;
+  int solved = 0, verified = 0, invalid = 0;
+  for (const mp::ArmBenchLog& l : logs) {
+    files.push_back(l.file);
+    solved += l.solved;
+    verified += l.verified;
+    invalid += l.invalid;
+  }
+  std::cerr << "bench: " << logs.size() << " logs in " << options.output_dir.string() << ": " << solved
+            << " solutions, " << verified << " verified, " << invalid << " invalid\n";
+  if (!tools) {
+    std::cerr << "shard " << mp::toString(options.shard) << " done; when every shard is: mddual bench-report "
+              << options.output_dir.string() << "\n";
+    return;
+  }
+  checkLogs(files);
+  buildReport(*tools, options.output_dir, files);
+}
+
 void runBenchCommand(const BenchFlags& f) {
+  if (!f.config.empty() && fs::is_directory(f.config)) {
+    runArmBenchCommand(f);
+    return;
+  }
   if (!f.report.empty()) {
     if (!f.config.empty()) throw FatalError("bench: give either a config file or --report DIR, not both");
     runBenchReport(f.report, reportTimeout("--report-timeout", f.report_timeout));
     return;
   }
   if (f.config.empty()) throw FatalError("bench: no config file given (mddual bench CONFIG.cfg, or --report DIR)");
+  if (!f.robot.empty() || !f.srdf.empty() || !f.group.empty() || !f.problems.empty() || !f.package_path.empty()) {
+    throw FatalError(
+        "bench: --robot, --srdf, --group, --problems and --package-path apply to a problem directory, "
+        "not to " +
+        f.config);
+  }
 
   mp::BenchOptions options;
   try {
-    options.checkers = mp::parseCheckerList(f.checkers);
+    options.checkers = mp::parseCheckerList(f.checkers.empty() ? "mdd,fcl,fcl-continuous" : f.checkers);
   } catch (const InvalidInputError& e) {
     throw FatalError(std::string("--checkers: ") + e.what());
   }
@@ -598,6 +676,9 @@ constexpr const char* kBenchFooter =
     "--shard I/N runs runs r with r mod N = I only, seeds OMPL with a splitmix64 hash of (seed, I, N) and\n"
     "skips the report: run `mddual bench-report DIR` when every shard is done. Before planning, the start and\n"
     "goal states are checked (within the bounds, free of the world by the exact test and by each checker).\n"
+    "A MotionBenchMaker problem directory (sceneNNNN.yaml, requestNNNN.yaml) with --robot URDF --srdf SRDF\n"
+    "runs each problem with mdd (certified arm edges), fcl (OMPL's discrete validator) and fcl-fine (1/32 rad\n"
+    "segments), the requests' planner_id unless --planners says otherwise; --shard I/N splits the problems.\n"
     "Exit status 2 for bad input.";
 
 /// A text option whose value is kept as given for the command to parse. Given
@@ -627,8 +708,12 @@ void registerBenchCommand(CLI::App& app) {
   CLI::App* sub =
       app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");
   sub->footer(kBenchFooter);
-  sub->add_option("config", flags->config, "benchmark config (OMPL.app .cfg)")->option_text("CONFIG.cfg");
-  textOption(sub, "--checkers", &flags->checkers, "comma-separated: mdd, fcl, fcl-continuous (default: all three)",
+  sub->add_option("config", flags->config,
+                  "benchmark config (OMPL.app .cfg), or a MotionBenchMaker problem directory (with --robot, --srdf)")
+      ->option_text("CONFIG.cfg|PROBLEM_DIR");
+  textOption(sub, "--checkers", &flags->checkers,
+             "comma-separated: mdd, fcl, fcl-continuous for a cfg; mdd, fcl, fcl-fine for a problem directory "
+             "(default: all three)",
              "LIST");
   textOption(sub, "--planners", &flags->planners,
              "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
@@ -648,6 +733,14 @@ void registerBenchCommand(CLI::App& app) {
              "(3) up mean the finest (default " +
                  std::to_string(mp::kDefaultLastValidLevel) + ", MddSceneOptions::last_valid_level)",
              "K");
+  textOption(sub, "--robot", &flags->robot, "problem directories: the robot's URDF", "URDF");
+  textOption(sub, "--srdf", &flags->srdf, "problem directories: the robot's SRDF", "SRDF");
+  textOption(sub, "--group", &flags->group, "problem directories: the planning group (default: each request's)",
+             "NAME");
+  textOption(sub, "--problems", &flags->problems, "problem directories: only the first N problems", "N");
+  sub->add_option("--package-path", flags->package_path,
+                  "problem directories: a folder searched for the URDF's package:// meshes (repeatable)")
+      ->option_text("DIR");
   sub->callback([flags] { runBenchCommand(*flags); });
 
   auto dir = std::make_shared<std::string>();

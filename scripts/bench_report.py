@@ -42,7 +42,7 @@ import os
 import sqlite3
 import sys
 
-CHECKER_ORDER = ["mdd", "fcl", "fcl-continuous"]
+CHECKER_ORDER = ["mdd", "fcl", "fcl-continuous", "fcl-fine"]
 
 
 def median(values):

@@ -22,6 +22,7 @@
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
+#include "metered_planner.h"
 #include "run_text.h"
 
 namespace mddual::planning {
@@ -33,24 +34,15 @@ namespace ot = ompl::tools;
 namespace {
 
 using detail::flag;
+using detail::MeteredPlanner;
 using detail::real;
+using detail::setUpPlanner;
 
 int parseInt(const std::string& text, const std::string& what) {
   if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) {
     throw InvalidInputError(what);
   }
   return std::stoi(text);
-}
-
-/// planner.setup(), with OMPL's errors there given the planner's place in the
-/// cfg (`where`): some parameters are checked only then (KPIECE1's
-/// min_valid_path_fraction and failed_expansion_score_factor).
-void setUpPlanner(ob::Planner& planner, const std::string& where) {
-  try {
-    planner.setup();
-  } catch (const ompl::Exception& e) {
-    throw InvalidInputError(where + e.what() + " (OMPL's check at the planner's set-up)");
-  }
 }
 
 /// The planner of a cfg entry with its problem context applied and the MDD
@@ -67,56 +59,6 @@ ob::PlannerPtr checkedPlanner(ProblemSetup& setup, const scene::PlannerSpec& spe
   }
   return p;
 }
-
-/// Runs a planner and calls `solved` the moment its solve() returns, before
-/// OMPL's benchmark checks the solution path: the checkers' counters are read
-/// there. Everything else is the wrapped planner's: name, parameters (the
-/// log's settings), specs, progress properties, planner data.
-class MeteredPlanner : public ob::Planner {
- public:
-  /// `where`: the planner's place in the cfg (ProblemSetup::plannerWhere), for
-  /// the errors of OMPL's checks of its parameters at set-up.
-  MeteredPlanner(ob::PlannerPtr inner, std::function<void()> solved, std::string where)
-      : ob::Planner(inner->getSpaceInformation(), inner->getName()),
-        inner_(std::move(inner)),
-        solved_(std::move(solved)),
-        where_(std::move(where)) {
-    specs_ = inner_->getSpecs();
-    params_.include(inner_->params());
-    plannerProgressProperties_ = inner_->getPlannerProgressProperties();
-  }
-  ob::PlannerStatus solve(const ob::PlannerTerminationCondition& ptc) override {
-    ob::PlannerStatus status;
-    try {
-      status = inner_->solve(ptc);
-    } catch (...) {
-      solved_();
-      throw;
-    }
-    solved_();
-    return status;
-  }
-  void setProblemDefinition(const ob::ProblemDefinitionPtr& pdef) override {
-    ob::Planner::setProblemDefinition(pdef);
-    inner_->setProblemDefinition(pdef);
-  }
-  void clear() override { inner_->clear(); }
-  void clearQuery() override { inner_->clearQuery(); }
-  void setup() override {
-    setUpPlanner(*inner_, where_);
-    setup_ = true;
-  }
-  void checkValidity() override { inner_->checkValidity(); }
-  void getPlannerData(ob::PlannerData& data) const override { inner_->getPlannerData(data); }
-  void printProperties(std::ostream& out) const override { inner_->printProperties(out); }
-  void printSettings(std::ostream& out) const override { inner_->printSettings(out); }
-  const ob::PlannerPtr& inner() const { return inner_; }
-
- private:
-  ob::PlannerPtr inner_;
-  std::function<void()> solved_;
-  std::string where_;
-};
 
 /// Throws unless a file can be written in `dir`: found before the runs, not
 /// when their log is written at the end (a read-only folder was reported

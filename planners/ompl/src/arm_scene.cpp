@@ -220,19 +220,23 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
   const double tm = 0.5 * (a + b);
   w.poseAt(*this, tm);
   const double e = 0.5 * (b - a) * rate + kRateSlackRel * scale_ * 1e-3;
-  const double upper = std::max(e, options_.contact_distance);
+  // Every state of [a, b] keeps at least the contact distance when the
+  // midpoint's bound exceeds it by the motion e.
+  const double cd = options_.contact_distance;
+  const double upper = e + cd;
   ++r.distance_queries;
   const double d = pairBound(pair, w.X_WL, upper);
-  if (d >= upper) return false;  // free on all of [a, b]
-  if (d <= options_.contact_distance) {
+  if (d >= upper) return false;  // clear of the contact distance on all of [a, b]
+  if (d <= cd) {
     // A contact (or near-contact) at tm. The first one: certify [a, tm) first.
     const bool state = pairCollides(pair, w.X_WL, nullptr);
     if (w.query == EdgeQuery::kValidity || rate == 0.0) return contactAt(rate == 0.0 ? a : tm, state);
     if (certify(w, p, a, tm, depth + 1)) return true;
     return contactAt(tm, state);
   }
-  // Free within d / rate of tm: the distance changes at most `rate` per unit t.
-  const double window = d / rate * (1.0 - kRateSlackRel);
+  // Clear of the contact distance within (d - cd) / rate of tm: the distance
+  // changes at most `rate` per unit t.
+  const double window = (d - cd) / rate * (1.0 - kRateSlackRel);
   if (tm - window > a && certify(w, p, a, tm - window, depth + 1)) return true;
   if (tm + window < b && certify(w, p, tm + window, b, depth + 1)) return true;
   return false;

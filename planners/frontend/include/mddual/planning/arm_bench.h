@@ -21,7 +21,9 @@
 // verification time.
 //
 // Verification of an exact solution: (a) each edge with ArmScene::checkEdge
-// (certified; its false alarms are states within contact_distance) and (b)
+// at a tenth of the checker's contact distance (certified; a path within
+// that of contact counts as invalid, and every path the mdd checker accepts
+// keeps ten times more) and (b)
 // each edge densely with FCL, states at most ArmBenchOptions::
 // verify_resolution radians apart in every joint. Invalid when either finds
 // a contact.

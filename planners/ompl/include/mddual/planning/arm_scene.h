@@ -14,14 +14,16 @@
 // Contract of checkEdge (the proof: docs/design/arms.md). The edge is
 // q(t) = q0 + t (q1 - q0), t in [0, 1], in variable space (OMPL's
 // interpolation of the joints, continuous joints unwrapped by the caller).
-//   - Certified: `collides` is false only when no checked pair touches at
-//     any t in [0, 1].
+//   - Certified with a margin: `collides` is false only when every checked
+//     pair keeps at least ArmSceneOptions::contact_distance apart at every
+//     t in [0, 1] (so no pair touches).
 //   - `fraction` is a lower bound of the first contact: every state at
-//     t < fraction is free (what OMPL's lastValid needs).
-//   - A state whose clearance is below ArmSceneOptions::contact_distance, or
-//     an interval still unresolved at max_depth halvings, counts as a
-//     contact: a false alarm at worst, never a miss. `state_collides` says
-//     whether the contact found is a true collision of a state.
+//     t < fraction keeps that clearance (what OMPL's lastValid needs; a
+//     lastValid state is never within the contact distance either).
+//   - A state closer than the contact distance, or an interval still
+//     unresolved at max_depth halvings, counts as a contact: a false alarm
+//     at worst, never a miss. `state_collides` says whether the contact
+//     found is a true collision of a state.
 //
 // Thread safety: const methods may run from any number of threads at once.
 #pragma once
@@ -42,8 +44,10 @@ namespace mddual::planning {
 
 /// Options of an ArmScene.
 struct ArmSceneOptions {
-  /// Clearance (world units) below which a state met by the certified edge
-  /// check counts as a contact. Smaller values refine grazing edges deeper
+  /// Clearance (world units) that every state of an edge called free keeps;
+  /// a state closer counts as a contact. A path the checker accepts thus
+  /// passes a check with a smaller contact distance (the benchmark's
+  /// verification uses a tenth). Smaller values refine grazing edges deeper
   /// (about log2(motion / contact_distance) halvings) and refuse fewer of
   /// them. 1e-5: far below any planning resolution, above round-off at the
   /// sizes of robot arms (metres).
@@ -85,6 +89,7 @@ class ArmScene {
 
   const scene::RobotModel& model() const { return *model_; }
   const scene::World& world() const { return *world_; }
+  const std::shared_ptr<const scene::World>& worldPtr() const { return world_; }
   const scene::AllowedCollisions& filter() const { return filter_; }
   const Eigen::Isometry3d& baseInWorld() const { return X_WB_; }
   const ArmSceneOptions& options() const { return options_; }

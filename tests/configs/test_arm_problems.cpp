@@ -5,12 +5,13 @@
 // trivial).
 #include <gtest/gtest.h>
 
+#include "arm7_dir.h"
 #include "mddual/planning/arm_problem.h"
 
 namespace mddual::planning {
 namespace {
 
-const std::filesystem::path kArm7Dir = std::filesystem::path(MDDUAL_CONFIGS_DIR) / "arm7";
+using testing::kArm7Dir;
 
 TEST(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
   const ArmRobot robot = loadArmRobot(kArm7Dir / "arm7.urdf", kArm7Dir / "arm7.srdf");

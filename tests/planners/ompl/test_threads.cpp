@@ -17,6 +17,8 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/base/spaces/SE3StateSpace.h>
 
+#include "arm_fixture.h"
+#include "mddual/planning/arm_checkers.h"
 #include "mddual/planning/clearance.h"
 #include "mddual/planning/exact_checking.h"
 #include "test_support.h"
@@ -329,6 +331,49 @@ TEST(ThreadsAndUpdates, UpdatesBetweenConcurrentRunsAreSeenByEveryThread) {
   for (std::size_t i = 0; i < w.states.size(); ++i) changed += before_updates.mdd_state[i] != reference.mdd_state[i];
   for (std::size_t i = 0; i < w.edges.size(); ++i) changed += before_updates.motion[i] != reference.motion[i];
   EXPECT_GT(changed, 0);
+}
+
+TEST(ArmThreads, SameAnswersFromFourThreadsAsFromOne) {
+  // The arm checkers on arm7 (ArmScene, its FCL baseline): states,
+  // clearance and edges with lastValid from four threads at once.
+  const testing::ArmFixture arm = testing::makeArm();
+  const FclArmScene fcl(arm.scene);
+  testing::Rng rng(testing::seed());
+  std::vector<std::vector<double>> states;
+  for (int i = 0; i < 24; ++i) states.push_back(testing::randomConfiguration(*arm.model, rng));
+  struct ArmAnswers {
+    std::vector<int> state, fcl_state, edge;
+    std::vector<double> clearance, fraction;
+  };
+  auto run = [&](ArmAnswers* out) {
+    for (const std::vector<double>& q : states) {
+      out->state.push_back(arm.scene->collides(q.data()) ? 1 : 0);
+      out->fcl_state.push_back(fcl.collides(q.data()) ? 1 : 0);
+      out->clearance.push_back(arm.scene->clearance(q.data()));
+    }
+    for (std::size_t i = 0; i + 1 < states.size(); i += 2) {
+      std::vector<double> q1 = states[i + 1];
+      for (std::size_t v = 0; v < q1.size(); ++v) q1[v] = states[i][v] + 0.3 * (q1[v] - states[i][v]);
+      const ArmEdgeResult r = arm.scene->checkEdge(states[i].data(), q1.data(), EdgeQuery::kLastValid);
+      out->edge.push_back(r.collides ? 1 : 0);
+      out->fraction.push_back(r.fraction);
+    }
+  };
+  ArmAnswers reference;
+  run(&reference);
+  constexpr int kArmThreads = 4;
+  std::vector<ArmAnswers> answers(kArmThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kArmThreads; ++t) threads.emplace_back([&, t] { run(&answers[static_cast<std::size_t>(t)]); });
+  for (std::thread& th : threads) th.join();
+  for (const ArmAnswers& a : answers) {
+    EXPECT_EQ(a.state, reference.state);
+    EXPECT_EQ(a.fcl_state, reference.fcl_state);
+    EXPECT_EQ(a.clearance, reference.clearance);
+    EXPECT_EQ(a.edge, reference.edge);
+    EXPECT_EQ(a.fraction, reference.fraction);
+  }
+  EXPECT_GT(std::count(reference.edge.begin(), reference.edge.end(), 1), 0);
 }
 
 }  // namespace

@@ -135,7 +135,8 @@ def test_check_edges_translation_first_contact_is_exact(boxes_r3):
 def test_check_edges_rotating_edge_is_sound(boxes, rng):
     # Rotating edges near the world cube: every state before the reported
     # fraction is free (a lower bound), and a colliding sampled state means
-    # the edge collides.
+    # the edge collides. Guard: enough edges must hit for these to be tested.
+    hits = 0
     for _ in range(30):
         X1 = translation(*rng.uniform(-2.5, 2.5, size=3))
         X1[:3, :3] = random_rotation(rng)
@@ -163,7 +164,9 @@ def test_check_edges_rotating_edge_is_sound(boxes, rng):
                 hit = True
                 assert t >= frac - 1e-9
         if hit:
+            hits += 1
             assert out["collides"][0]
+    assert hits >= 10  # 15 of the 30 edges
 
 
 def test_directed_clearance_closed_form(boxes):

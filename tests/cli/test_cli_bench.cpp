@@ -58,7 +58,9 @@ TEST(CliBench, EndToEnd) {
   TempDir dir;
   const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()) / "cfg");
   const fs::path out = fs::path(dir.path()) / "out";
-  const CliRun run = runCli({"bench", cfg.string(), "--output", out.string()});
+  // A time limit far above the runs' (RRT-Connect stops at its first
+  // solution): only a safety net, so every run solves on any machine.
+  const CliRun run = runCli({"bench", cfg.string(), "--output", out.string(), "--time-limit", "300"});
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
 
   // Logs, database, plot, summary.
@@ -100,6 +102,11 @@ TEST(CliBench, EndToEnd) {
                 "select sum(r.invalid_solution) from runs r join experiments e on r.experimentid = e.id "
                 "where e.checker = 'mdd'"),
             std::vector<std::string>{"0"});
+  // The tiny problem is easy: our checker's 4 runs all solve and verify.
+  EXPECT_EQ(sql(db,
+                "select sum(r.verified) from runs r join experiments e on r.experimentid = e.id "
+                "where e.checker = 'mdd'"),
+            std::vector<std::string>{"4"});
   // The summary counts what the database holds: its invalid column per
   // (planner, checker) and its success rate.
   const auto groups = sql(db,

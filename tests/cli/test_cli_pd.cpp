@@ -126,6 +126,11 @@ TEST(CliPd, MethodsAgreeWithTheBruteForceOnRandomPairs) {
   }
   const std::vector<Json> brute = run({"pd", "--method", "brute"}, input);
   ASSERT_EQ(brute.size(), 30u);
+  // The comparison is about depths: every pair penetrates (B slides at most
+  // 1.45 along x, against radii 1.2 + 1.0), or the sample tests nothing.
+  int penetrating = 0;
+  for (const Json& r : brute) penetrating += r["status"] == "penetrating" ? 1 : 0;
+  EXPECT_EQ(penetrating, 30);
   for (const char* method : {"exact", "shallow", "approx"}) {
     const std::vector<Json> out = run({"pd", "--method", method}, input);
     ASSERT_EQ(out.size(), 30u);

@@ -92,7 +92,10 @@ foreach(kind install build_tree)
     message(FATAL_ERROR "example (${kind}): mddual found at '${found_dir}', expected under '${expected_dir}'")
   endif()
   run("build example (${kind})" ${CMAKE_COMMAND} --build ${bdir})
-  run("run example (${kind})" ${bdir}/plan_with_mddual ${CFG})
+  # The example seeds OMPL and RRT-Connect stops at its first solution; a
+  # time limit of 300 s (not the example's default 5 s) is only a safety net,
+  # so a slow or loaded machine gives the same verdict.
+  run("run example (${kind})" ${bdir}/plan_with_mddual ${CFG} 300)
   message(STATUS "example (${kind}):\n${run_out}")
   foreach(needed "verified: valid" "clearance ahead" "ok")
     string(FIND "${run_out}" "${needed}" at)

@@ -30,6 +30,9 @@ struct PdTally {
   int ee_closest = 0;  ///< penetrating scenes whose closest facet (exact) is an EE facet
   int approx_checks = 0;
   int approx_exact_hits = 0;  ///< approximate answers equal to PD
+  /// Exact answers taken from the explicit M (stats.brute_fallbacks): these
+  /// compare the brute force with itself, so a family bounds their number.
+  int brute_fallbacks = 0;
   double fraction(int n) const { return scenes > 0 ? static_cast<double>(n) / scenes : 0.0; }
 };
 
@@ -86,6 +89,7 @@ class PdOracle {
     };
     const PenetrationResult exact = run(PenetrationMethod::kExact, 0.0, "exact");
     if (exact.facet.kind == FaceOfM::Kind::kEE) ++tally->ee_closest;
+    if (exact.stats.brute_fallbacks > 0) ++tally->brute_fallbacks;
     if (exact.stats.walk_fallbacks > 0) {
       std::ostringstream why;
       why << "exact: " << exact.stats.walk_fallbacks << " Gaussian-map walk fallbacks";

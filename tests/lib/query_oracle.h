@@ -111,7 +111,7 @@ class QueryOracle {
       const IntersectResult fast = intersect(in);
       const IntersectResult ref = brute.intersect();
       if (fast.intersecting) ++tally->intersecting;
-      bool ok = fast.status == ref.status || touchingEither(fast.status, ref.status, brute, tol);
+      bool ok = fast.status == ref.status || touchingEither(fast.status, ref.status, brute, world_tol);
       if (ok && fast.status == IntersectStatus::kSeparated)
         ok = separates(a, X_WA, b, X_WB, fast.separating_normal_W, world_tol);
       if (!ok) {
@@ -137,7 +137,7 @@ class QueryOracle {
       tally->add(ref.status);
       if (fast.stats.planar) ++tally->planar;
       std::ostringstream why;
-      if (!agree(fast, ref, tol, &why) || !agreeToi(fast_toi, ref_toi, ref, tol, &why) ||
+      if (!agree(fast, ref, brute, s, tol, world_tol, &why) || !agreeToi(fast_toi, ref_toi, ref, tol, &why) ||
           !contactValid(a, X_WA, b, X_WB, s, fast, world_tol, &why) ||
           (fast_toi.status == ToiStatus::kHit &&
            !contactValid(a, X_WA, b, X_WB, s, asMdd(fast_toi), world_tol, &why)) ||
@@ -169,9 +169,20 @@ class QueryOracle {
     return r;
   }
 
-  /// A status mismatch is acceptable only across the touching boundary.
-  static bool touchingEither(IntersectStatus x, IntersectStatus y, const BruteForce&, double) {
-    return x == IntersectStatus::kTouching || y == IntersectStatus::kTouching;
+  /// Signed distance of the point p_W to M = A - B, from the brute force's
+  /// explicit M (outsideOf: exact inside, a lower bound on the distance
+  /// outside that is 0 on the boundary).
+  static double outsideOfM(const BruteForce& brute, const Eigen::Vector3d& p_W) {
+    return outsideOf(brute.minkowskiDifference().polytope, Eigen::Isometry3d::Identity(), p_W);
+  }
+
+  /// A status mismatch is acceptable only across the touching boundary: one
+  /// side says touching and the origin is within the touch tolerance (the
+  /// brute force's, plus the check's own `tol`) of M's boundary, as the
+  /// brute force's explicit M measures it.
+  static bool touchingEither(IntersectStatus x, IntersectStatus y, const BruteForce& brute, double tol) {
+    if (x != IntersectStatus::kTouching && y != IntersectStatus::kTouching) return false;
+    return std::abs(outsideOfM(brute, Eigen::Vector3d::Zero())) <= brute.touchTolerance() + tol;
   }
 
   static bool near(double x, double y, double tol) {
@@ -180,7 +191,8 @@ class QueryOracle {
     return std::abs(x - y) <= tol;
   }
 
-  static bool agree(const MddResult& fast, const MddResult& ref, double tol, std::ostringstream* why) {
+  static bool agree(const MddResult& fast, const MddResult& ref, const BruteForce& brute, const Eigen::Vector3d& s,
+                    double tol, double world_tol, std::ostringstream* why) {
     if (fast.status != ref.status) {
       const bool contact_f = fast.status != ContactStatus::kNoContact;
       const bool contact_r = ref.status != ContactStatus::kNoContact;
@@ -188,9 +200,14 @@ class QueryOracle {
       const bool across_touch = contact_f && contact_r &&
                                 (fast.status == ContactStatus::kTouching || ref.status == ContactStatus::kTouching) &&
                                 std::abs(fast.distance) <= tol && std::abs(ref.distance) <= tol;
-      // A line grazing M within tolerance: contact of (near) zero length.
-      const bool grazing = contact_f != contact_r &&
-                           (contact_f ? fast.t_hi - fast.t_lo <= tol || fast.stats.planar : ref.t_hi - ref.t_lo <= tol);
+      // A line grazing M within tolerance: the brute force's contact is of
+      // (near) zero length, or the fast query's contact point t u lies within
+      // tolerance of the brute force's M (a line that passes that close).
+      const bool grazing =
+          contact_f != contact_r &&
+          (contact_f ? std::isfinite(fast.contact.t) &&
+                           outsideOfM(brute, fast.contact.t * s.normalized()) <= brute.touchTolerance() + world_tol
+                     : ref.t_hi - ref.t_lo <= tol);
       if (!across_touch && !grazing) {
         *why << "status differs";
         return false;
@@ -201,11 +218,18 @@ class QueryOracle {
       *why << "mdd differs by " << fast.distance - ref.distance;
       return false;
     }
-    if (!std::isnan(fast.t_lo) && !near(fast.t_lo, ref.t_lo, tol)) {
+    // Both ends are required, except the far end of a separated answer
+    // (not computed: NaN, or when given, equal to the brute force's).
+    const bool separated = fast.status == ContactStatus::kSeparated;
+    const bool forward = ref.t_lo > 0.0;
+    const auto end_agrees = [&](double f, double r, bool far_end) {
+      return (separated && far_end && std::isnan(f)) || near(f, r, tol);
+    };
+    if (!end_agrees(fast.t_lo, ref.t_lo, !forward)) {
       *why << "t_lo differs by " << fast.t_lo - ref.t_lo;
       return false;
     }
-    if (!std::isnan(fast.t_hi) && !near(fast.t_hi, ref.t_hi, tol)) {
+    if (!end_agrees(fast.t_hi, ref.t_hi, forward)) {
       *why << "t_hi differs by " << fast.t_hi - ref.t_hi;
       return false;
     }

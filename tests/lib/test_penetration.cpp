@@ -264,16 +264,22 @@ TEST(PenetrationExact, LargeEllipsoidsAgreeWithTheBruteForce) {
   const ConvexPolytope a = ConvexPolytope::fromPoints(generators::ellipsoid(300));
   Rng rng(9);
   const ConvexPolytope b = ConvexPolytope::fromPoints(generators::roundedCubeRandom(200, rng));
+  int penetrating = 0;  // the depths compared are the point: every sample must penetrate
   for (int i = 0; i < 3; ++i) {
     const Eigen::Isometry3d X_WA = pose(generators::randomRotation(rng), {0, 0, 0});
     const Eigen::Isometry3d X_WB = randomPoseAt(rng, 2.0);
     const PenetrationResult brute = pd(a, X_WA, b, X_WB, PenetrationMethod::kBruteForce);
+    penetrating += brute.status == PenetrationStatus::kPenetrating ? 1 : 0;
     for (PenetrationMethod m : {PenetrationMethod::kExact, PenetrationMethod::kShallow}) {
       const PenetrationResult r = pd(a, X_WA, b, X_WB, m);
       EXPECT_EQ(r.status, brute.status);
       EXPECT_NEAR(r.depth, brute.depth, 1e-9 * 10) << toString(m);
+      // The exact method's own answer (not the explicit M's, which would
+      // compare the brute force with itself).
+      EXPECT_EQ(r.stats.brute_fallbacks, 0) << toString(m);
     }
   }
+  EXPECT_EQ(penetrating, 3);
 }
 
 // ---- Width -------------------------------------------------------------------------

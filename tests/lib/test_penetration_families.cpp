@@ -40,9 +40,14 @@ PdTally runFamily(int scenes, const Scene& scene, std::uint64_t seed) {
   const auto pct = [&](int n) { return static_cast<int>(100.0 * tally.fraction(n) + 0.5); };
   std::printf(
       "[ sample   ] %d scenes: penetrating %d%%, touching %d%%, separated %d%%; %d flat M; %d closest facets EE; "
-      "%d of %d approximate answers exact\n",
+      "%d of %d approximate answers exact; %d exact answers from the explicit M\n",
       tally.scenes, pct(tally.penetrating), pct(tally.touching), pct(tally.separated), tally.flat_m, tally.ee_closest,
-      tally.approx_exact_hits, tally.approx_checks);
+      tally.approx_exact_hits, tally.approx_checks, tally.brute_fallbacks);
+  // An exact answer taken from the explicit M compares the brute force with
+  // itself. It happens only on round-off (nearly parallel edges of identical
+  // bodies; none in any family's sample): at most 1% of the penetrating
+  // scenes may be answered so, or the family no longer tests the method.
+  EXPECT_LE(tally.brute_fallbacks, tally.penetrating / 100);
   return tally;
 }
 

@@ -4,6 +4,11 @@
 // status the brute force gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <limits>
+#include <utility>
+#include <vector>
+
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "query_oracle.h"
@@ -314,13 +319,40 @@ TEST(QueryRegressions, PosesBeyondTheSupportedRangeAreNamed) {
 // (both triangles have a vertical edge): no EE face there, the neighbour is
 // a VF face, and the climb over edge neighbours did not name it (the cold
 // search met it in SEARCH-VF). Fixed in search.cpp (parallelEdgeNeighbours).
+/// Whether a separating axis proves two triangles (world points) disjoint:
+/// their normals and the cross products of their edges (the separating-axis
+/// theorem, complete for triangles that are not coplanar). Independent of
+/// the library: a bracket for a pinned time of impact.
+bool trianglesSeparated(const std::vector<Eigen::Vector3d>& p, const std::vector<Eigen::Vector3d>& q) {
+  std::vector<Eigen::Vector3d> axes = {(p[1] - p[0]).cross(p[2] - p[0]), (q[1] - q[0]).cross(q[2] - q[0])};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) axes.push_back((p[(i + 1) % 3] - p[i]).cross(q[(j + 1) % 3] - q[j]));
+  }
+  for (const Eigen::Vector3d& n : axes) {
+    if (n.norm() < 1e-12) continue;  // parallel edges: no axis
+    const auto extent = [&n](const std::vector<Eigen::Vector3d>& points) {
+      double lo = std::numeric_limits<double>::infinity();
+      double hi = -lo;
+      for (const Eigen::Vector3d& x : points) {
+        lo = std::min(lo, n.dot(x));
+        hi = std::max(hi, n.dot(x));
+      }
+      return std::make_pair(lo, hi);
+    };
+    const auto [p_lo, p_hi] = extent(p);
+    const auto [q_lo, q_hi] = extent(q);
+    if (p_hi < q_lo || q_hi < p_lo) return true;
+  }
+  return false;
+}
+
 TEST(QueryRegressions, WarmStartFromAnotherPoseKeepsTheToi) {
-  const ConvexPolytope a =
-      ConvexPolytope::fromPoints({{11.875, 13.875, 0.5}, {11.875, 14.125, -0.5}, {11.875, 14.125, 0.5}});
-  const ConvexPolytope b =
-      ConvexPolytope::fromPoints({{0.24859311214337745, -0.2056179940700531, -0.20000000298023224},
-                                  {0.27111210456738871, 0, 0.20000000298023224},
-                                  {0.24859311214337745, -0.2056179940700531, 0.20000000298023224}});
+  const std::vector<Eigen::Vector3d> a_points = {{11.875, 13.875, 0.5}, {11.875, 14.125, -0.5}, {11.875, 14.125, 0.5}};
+  const std::vector<Eigen::Vector3d> b_points = {{0.24859311214337745, -0.2056179940700531, -0.20000000298023224},
+                                                 {0.27111210456738871, 0, 0.20000000298023224},
+                                                 {0.24859311214337745, -0.2056179940700531, 0.20000000298023224}};
+  const ConvexPolytope a = ConvexPolytope::fromPoints(a_points);
+  const ConvexPolytope b = ConvexPolytope::fromPoints(b_points);
   const auto pose = [](double x, double y, double qw, double qz) {
     Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
     X.translation() = Eigen::Vector3d(x, y, 0);
@@ -342,7 +374,19 @@ TEST(QueryRegressions, WarmStartFromAnotherPoseKeepsTheToi) {
   second.max_distance = 1.3728998237483596;
   const ToiResult cold = toi(second);
   ASSERT_EQ(cold.status, ToiStatus::kHit);
+  // 0.7226214933036319: the brute force's value (explicit M), bracketed by
+  // the separating-axis test: B 1e-6 short of it is disjoint from A, 1e-6
+  // past it is not (no axis separates the two triangles, which are not
+  // coplanar).
   EXPECT_NEAR(cold.toi, 0.7226214933036319, 1e-12);
+  EXPECT_NEAR(bruteForceToi(second).toi, 0.7226214933036319, 1e-12);
+  const auto b_at = [&](double t) {
+    std::vector<Eigen::Vector3d> out;
+    for (const Eigen::Vector3d& x : b_points) out.push_back(second.X_WB * x + t * second.s_W.normalized());
+    return out;
+  };
+  EXPECT_TRUE(trianglesSeparated(a_points, b_at(0.7226214933036319 - 1e-6)));
+  EXPECT_FALSE(trianglesSeparated(a_points, b_at(0.7226214933036319 + 1e-6)));
   WarmStart warm;
   toi(first, &warm);
   const ToiResult hot = toi(second, &warm);

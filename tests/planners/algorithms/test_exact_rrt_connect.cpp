@@ -18,12 +18,18 @@
 
 #include "mddual/error.h"
 #include "mddual/planning/exact_rrt_connect.h"
+#include "planner_budget.h"
 
 namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
+
+/// The planner's budget: iterations, not seconds (planner_budget.h).
+ob::PlannerTerminationCondition budget() {
+  return mddual::testing::iterationBudget(mddual::testing::kPlannerIterations);
+}
 
 /// [0,10]^2 with a wall x in [4.9, 5.1] except for the gap y in [8, 9].
 bool free(const ob::State* s) {
@@ -54,7 +60,7 @@ TEST(ExactRRTConnect, SolvesThroughTheGapWithAValidPath) {
   og::SimpleSetup ss = makeSetup();
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   ss.setPlanner(planner);
-  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ASSERT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   og::PathGeometric& path = ss.getSolutionPath();
   EXPECT_TRUE(path.check());
   // Re-check every segment densely: no point of the path is in the wall.
@@ -95,7 +101,7 @@ TEST(ExactRRTConnect, ExtensionsStopAtTheWall) {
   og::SimpleSetup ss = makeSetup();
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   ss.setPlanner(planner);
-  ss.solve(5.0);
+  ss.solve(budget());
   EXPECT_GT(statesAtTheWall(*planner, ss.getSpaceInformation()), 0);
 }
 
@@ -105,7 +111,7 @@ TEST(ExactRRTConnect, RangeLimitsExtensions) {
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   planner->setRange(0.5);
   ss.setPlanner(planner);
-  ASSERT_EQ(ss.solve(10.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ASSERT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   ob::PlannerData data(ss.getSpaceInformation());
   planner->getPlannerData(data);
   // Every tree edge (not the final joining edge) is at most `range` long.
@@ -144,7 +150,7 @@ TEST(ExactRRTConnect, ConnectStepsByRangeUntilItReachesTheNewNode) {
   constexpr double kRange = 0.5;
   planner->setRange(kRange);
   ss.setPlanner(planner);
-  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ASSERT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   ob::PlannerData data(ss.getSpaceInformation());
   planner->getPlannerData(data);
   int start_tree = 0;
@@ -200,7 +206,7 @@ TEST(ExactRRTConnect, Se2ExtensionsRotateInPlaceThenTranslate) {
   planner->params().setParam("rotate_first", "1");
   ASSERT_TRUE(planner->getRotateFirst());
   ss.setPlanner(planner);
-  ASSERT_EQ(ss.solve(10.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ASSERT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   const og::PathGeometric& path = ss.getSolutionPath();
   int rotations = 0, translations = 0;
   for (unsigned i = 0; i + 1 < path.getStateCount(); ++i) {
@@ -430,7 +436,7 @@ std::shared_ptr<RecordingValidator> solveRecorded(og::SimpleSetup& ss,
   ss.setup();
   auto validator = std::make_shared<RecordingValidator>(ss.getSpaceInformation());
   ss.getSpaceInformation()->setMotionValidator(validator);
-  EXPECT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  EXPECT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   validator->recording = false;  // the planner's checks only
   EXPECT_TRUE(ss.getSolutionPath().check());
   return validator;
@@ -499,7 +505,7 @@ TEST(ExactRRTConnect, ABlockedRangeSetToZeroAfterSetupIsOmplsRangeAgain) {
   ss.setPlanner(planner);
   ss.setup();
   planner->setBlockedRange(0.0);
-  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ASSERT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   int copies = 0;
   for (const TreeEdge& e : treeEdges(*planner, ss.getSpaceInformation())) copies += e.length <= 1e-6;
   EXPECT_LE(copies, 1);  // the joining edge's: its goal-tree end is a copy of the joining state
@@ -567,7 +573,7 @@ TEST(ExactRRTConnect, RotateFirstOffByDefaultKeepsStraightEdges) {
   auto planner = std::make_shared<ExactRRTConnect>(ss.getSpaceInformation());
   EXPECT_FALSE(planner->getRotateFirst());
   ss.setPlanner(planner);
-  ASSERT_EQ(ss.solve(5.0), ob::PlannerStatus::EXACT_SOLUTION);
+  ASSERT_EQ(ss.solve(budget()), ob::PlannerStatus::EXACT_SOLUTION);
   // Straight edges: some segment turns and moves at once.
   const og::PathGeometric& path = ss.getSolutionPath();
   int mixed = 0;

@@ -19,6 +19,7 @@
 
 #include "mddual/error.h"
 #include "mddual/planning/bench_runner.h"
+#include "planner_budget.h"
 #include "tiny_config.h"
 
 namespace mddual::planning {
@@ -120,6 +121,9 @@ const std::vector<std::string> kExtraProperties = {"run index INTEGER",
 TEST_F(BenchRunner, WritesOneLogPerCheckerWithVerifiedRuns) {
   BenchOptions options;
   options.output_dir = dir_ / "out";
+  // Not the config's 0.2 s: every run must solve, so the limit is only a
+  // safety net (RRT-Connect stops at its first solution, seeded by the main).
+  options.time_limit = testing::kPlannerSafetyNetSeconds;
   int started = 0;
   int finished = 0;
   BenchObserver observer;

@@ -22,6 +22,7 @@
 #include "mddual/error.h"
 #include "mddual/planning/bench_runner.h"
 #include "mddual/planning/problem_setup.h"
+#include "planner_budget.h"
 #include "tiny_config.h"
 
 namespace mddual::planning {
@@ -188,7 +189,9 @@ TEST_F(FrontendSetup, DefaultsAndPlannersSolveWithEveryChecker) {
     EXPECT_DOUBLE_EQ(setup.spaceInformation()->getStateSpace()->getLongestValidSegmentFraction(), 0.01);
     setup.simpleSetup().setPlanner(setup.makePlanner(problem.config.planners[1]));
     setup.resetStats();
-    EXPECT_TRUE(setup.simpleSetup().solve(5.0)) << toString(kind);
+    EXPECT_EQ(setup.simpleSetup().solve(testing::iterationBudget(testing::kPlannerIterations)),
+              ob::PlannerStatus::EXACT_SOLUTION)
+        << toString(kind);
     const CheckStats st = setup.stats();
     EXPECT_GT(st.motion_checks, 0u) << toString(kind);
     EXPECT_GT(st.state_checks, 0u) << toString(kind);
@@ -242,7 +245,9 @@ TEST_F(FrontendSetup, PlanarTranslationOnlyWithKpiece) {
     EXPECT_EQ(setup.planningSpace()->kind(), SpaceKind::kR2);
     EXPECT_EQ(setup.spaceInformation()->getStateSpace()->getDefaultProjection()->getDimension(), 2u);
     setup.simpleSetup().setPlanner(setup.makePlanner(problem.config.planners[0]));
-    EXPECT_TRUE(setup.simpleSetup().solve(5.0)) << toString(kind);
+    EXPECT_EQ(setup.simpleSetup().solve(testing::iterationBudget(testing::kPlannerIterations)),
+              ob::PlannerStatus::EXACT_SOLUTION)
+        << toString(kind);
   }
 }
 
@@ -306,9 +311,14 @@ TEST_F(FrontendSetup, ContinuousCheckerWithAMeshWorld) {
       EXPECT_FALSE(valid);  // 10 samples 0.33 apart: the 0.55 overlap interval is seen
       EXPECT_GE(last.second, 0.0);
       EXPECT_LE(2.0 + 3.0 * last.second, 4.0 - 0.25);
+    } else {
+      // Conservative advancement: no crash, and FCL 0.7's known answer (its
+      // mesh-mesh advancement misses this wall), pinned so that a change of
+      // FCL's behaviour shows here: the baseline's misses are measured by
+      // the benchmarks.
+      EXPECT_TRUE(valid) << "FCL's conservative advancement now sees the wall: update this test and the baseline's "
+                            "description";
     }
-    // Conservative advancement: FCL 0.7's answer, whatever it is (its mesh-mesh
-    // advancement misses this wall), but no crash.
     EXPECT_EQ(setup.stats().motion_checks, 2u);
   }
 }

@@ -111,7 +111,18 @@ TEST_F(VerifierTest, RotatingSegments) {
   EXPECT_TRUE(turn.fcl_collision);
   EXPECT_EQ(turn.mdd_segment, 1);
   EXPECT_EQ(turn.fcl_segment, 1);
-  EXPECT_NEAR(turn.fcl_fraction, 0.5, 0.3);
+  // Closed form of the first contact: the cube's extent along x at yaw a is
+  // 0.1 (cos a + sin a), which reaches the wall (0.12 ahead) at
+  // a = asin(1.2 / sqrt 2) - pi / 4 = 0.2278, a fraction 0.1450 of the turn.
+  // Past it the corner stays in the wall (its extent peaks at 0.1414 < 0.17),
+  // so the dense check's first hit is the first sample after the contact: at
+  // most one sample spacing later, 1 / ceil(L / step) with L the arc length
+  // of the cube's farthest point (0.1 sqrt 3 from the centre) over the turn.
+  const double first_contact = (std::asin(1.2 / std::sqrt(2.0)) - kPi / 4) / (kPi / 2);
+  const double spacing = 1.0 / std::ceil(kPi / 2 * 0.1 * std::sqrt(3.0) / verifier_.step());
+  EXPECT_NEAR(first_contact, 0.1450, 5e-5);
+  EXPECT_GT(turn.fcl_fraction, first_contact);
+  EXPECT_LE(turn.fcl_fraction, first_contact + spacing);
   // The same turn with room to spare (0.1 before the wall: 0.0414 > 0.02 + 0.0214).
   const VerifyResult room = verify(se2_, {{30, 0, 0}, {49.8, 0, 0}, {49.8, 0, kPi / 2}, {30, 3, -2.5}});
   EXPECT_TRUE(room.valid);

@@ -25,15 +25,42 @@ namespace {
 using testing::kInf;
 using testing::kPi;
 
+/// The box of a polytope's vertices posed at X, grown by a margin against
+/// round-off (boxes of touching pieces must meet).
+Eigen::AlignedBox3d posedBox(const ConvexPolytope& p, const Eigen::Isometry3d& X) {
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& v : p.vertices()) box.extend(X * v);
+  const double margin = 1e-9 * (1.0 + box.max().cwiseAbs().maxCoeff() + box.min().cwiseAbs().maxCoeff());
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  return box;
+}
+
+/// The boxes of the world pieces' vertices, and those that meet `box`: a
+/// scan of every piece, independent of the scene's own broad phase (its
+/// tree, its boxes).
+struct WorldBoxes {
+  explicit WorldBoxes(const MddScene& mdd) {
+    for (const scene::Piece& p : mdd.world().pieces())
+      boxes.push_back(posedBox(p.polytope, Eigen::Isometry3d::Identity()));
+  }
+  std::vector<int> meeting(const Eigen::AlignedBox3d& box) const {
+    std::vector<int> out;
+    for (std::size_t j = 0; j < boxes.size(); ++j) {
+      if (boxes[j].intersects(box)) out.push_back(static_cast<int>(j));
+    }
+    return out;
+  }
+  std::vector<Eigen::AlignedBox3d> boxes;
+};
+
 /// The old state check: every robot piece of `set` against the world pieces
-/// whose boxes meet its box at X_WR.
+/// whose boxes meet its box at X_WR (found by a scan of every world piece).
 bool pairLoopCollides(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR) {
-  std::vector<int> candidates;
+  const WorldBoxes world(mdd);
   for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
     const scene::Piece& piece = mdd.setPiece(set, i);
-    candidates.clear();
-    mdd.world().candidates(scene::transformedBox(piece.box, X_WR), &candidates);
-    for (int j : candidates) {
+    for (int j : world.meeting(posedBox(piece.polytope, X_WR))) {
       IntersectInput in;
       in.a = &mdd.world().pieces()[static_cast<std::size_t>(j)].polytope;
       in.b = &piece.polytope;
@@ -44,19 +71,23 @@ bool pairLoopCollides(const MddScene& mdd, int set, const Eigen::Isometry3d& X_W
   return false;
 }
 
-/// The old sweep: one toi per candidate pair (boxes swept over the whole
-/// length), the smallest contact distance (0 when the start collides).
+/// The old sweep: one toi per candidate pair (the world pieces whose boxes
+/// meet the box of the piece's start and end boxes, which holds the swept
+/// piece), the smallest contact distance (0 when the start collides).
 double pairLoopSweep(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W,
                      double max_distance) {
-  std::vector<int> candidates;
+  const WorldBoxes world(mdd);
   double best = kInf;
   for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
-    candidates.clear();
-    mdd.sweptCandidates(set, i, X_WR, v_W, max_distance, &candidates);
-    for (int j : candidates) {
+    const scene::Piece& piece = mdd.setPiece(set, i);
+    Eigen::Isometry3d X_end = X_WR;
+    X_end.pretranslate(max_distance * v_W.normalized());
+    Eigen::AlignedBox3d swept = posedBox(piece.polytope, X_WR);
+    swept.extend(posedBox(piece.polytope, X_end));
+    for (int j : world.meeting(swept)) {
       DirectionalInput in;
       in.a = &mdd.world().pieces()[static_cast<std::size_t>(j)].polytope;
-      in.b = &mdd.setPiece(set, i).polytope;
+      in.b = &piece.polytope;
       in.X_WB = X_WR;
       in.s_W = v_W;
       in.max_distance = max_distance;

@@ -140,8 +140,9 @@ TEST(Query, PenetratingCubesTakeTheShorterWayOut) {
 // within the touch tolerance (about 1e-12 of the size) of M's boundary. Blobs
 // in random poses; B moved from afar along a random direction to its first
 // contact (the brute force's toi), then `depth` further (penetrating) or
-// `depth` short of it (separated). The brute force's statuses are asserted
-// too: the placements are what they claim.
+// `depth` short of it (separated); exactly there, toi() is in contact. The
+// brute force's statuses are asserted too: the placements are what they
+// claim.
 TEST(Query, ShallowPenetrationIsNotTouching) {
   generators::Rng rng(5);
   int searched = 0;
@@ -171,6 +172,12 @@ TEST(Query, ShallowPenetrationIsNotTouching) {
       EXPECT_EQ(status(first.toi + depth, false), IntersectStatus::kPenetrating) << where;
       EXPECT_EQ(status(first.toi - depth, true), IntersectStatus::kSeparated) << where;
       EXPECT_EQ(status(first.toi - depth, false), IntersectStatus::kSeparated) << where;
+      // At the first contact itself B touches A: toi() from there is "in
+      // contact" at 0, not a hit at a t of round-off size (a hit is > 0).
+      Eigen::Isometry3d X_WB = X_WB0;
+      X_WB.pretranslate(first.toi * u);
+      const ToiResult at_contact = toi(DirectionalInput{&a, X_WA, &b, X_WB, u});
+      EXPECT_EQ(at_contact.status, ToiStatus::kInContact) << where << ", toi " << at_contact.toi;
     }
   }
   // Guard: some answers come from the ray search's exit face, where the

@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <memory>
+#include <thread>
 
 namespace mddual::testing {
 
@@ -23,12 +24,20 @@ constexpr long kPlannerIterations = 20000;
 
 /// Stops the planner after `iterations` evaluations of the condition (OMPL's
 /// planners evaluate it once per iteration of their main loop), or after the
-/// safety net. The counter is atomic: some planners (PRM) evaluate the
-/// condition from a second thread.
-inline ompl::base::PlannerTerminationCondition iterationBudget(long iterations) {
+/// safety net. The counter is atomic: some planners evaluate the condition
+/// from several threads. With `calling_thread_only`, only the evaluations on
+/// the thread that made the budget count (the others see the verdict): the
+/// planners (PRM, SPARS) whose solution-checking thread evaluates it in a
+/// busy loop would otherwise spend the budget as fast as the scheduler lets
+/// that thread run.
+inline ompl::base::PlannerTerminationCondition iterationBudget(long iterations, bool calling_thread_only = false) {
   auto count = std::make_shared<std::atomic<long>>(0);
+  const std::thread::id owner = std::this_thread::get_id();
   return ompl::base::plannerOrTerminationCondition(
-      ompl::base::PlannerTerminationCondition([count, iterations] { return ++*count > iterations; }),
+      ompl::base::PlannerTerminationCondition([count, iterations, owner, calling_thread_only] {
+        if (calling_thread_only && std::this_thread::get_id() != owner) return count->load() > iterations;
+        return ++*count > iterations;
+      }),
       ompl::base::timedPlannerTerminationCondition(kPlannerSafetyNetSeconds));
 }
 

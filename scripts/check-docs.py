@@ -6,7 +6,7 @@
   repository, and a `#section` part names a heading of the Markdown file it
   points to (GitHub's anchors).
 - Nothing refers to the developers' shared folder beside the repository
-  (a path starting with ../shared) or links to a path outside the repository.
+  (a path into the folder named shared next to the clone) or links to a path outside the repository.
 - README.md has at most 300 lines.
 
 Web links (http, https, mailto) are not followed. Links inside code blocks

@@ -224,7 +224,7 @@ struct GjkOutcome {
 };
 
 GjkOutcome runGjk(const PairGeometry& pair, const Eigen::Vector3d& o_A, const DistanceWarmStart* warm,
-                  DistanceStats* stats) {
+                  DistanceStats* stats, double enough = std::numeric_limits<double>::infinity()) {
   SearchStats search;
   GjkOutcome out;
   Simplex& s = out.simplex;
@@ -279,7 +279,7 @@ GjkOutcome runGjk(const PairGeometry& pair, const Eigen::Vector3d& o_A, const Di
     hint_b = m.vb;
     const SimplexPoint w = point(m.va, m.vb);
     out.lower = std::max(out.lower, v.dot(w.p) / vn);
-    if (vn - out.lower <= gap_tol) break;
+    if (vn - out.lower <= gap_tol || out.lower >= enough) break;
     if (s.contains(m.va, m.vb)) {
       out.stalled = true;
       break;
@@ -454,10 +454,11 @@ void saveWarm(const Simplex& s, DistanceWarmStart* warm) {
 }  // namespace
 }  // namespace detail
 
-double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm) {
+double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm, double enough) {
+  if (std::isnan(enough)) throw InvalidInputError("separationLowerBound: enough is NaN");
   const detail::PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, "separationLowerBound");
   DistanceStats stats;
-  const detail::GjkOutcome g = detail::runGjk(pair, Eigen::Vector3d::Zero(), warm, &stats);
+  const detail::GjkOutcome g = detail::runGjk(pair, Eigen::Vector3d::Zero(), warm, &stats, enough);
   detail::saveWarm(g.simplex, warm);
   if (g.contact || !(g.upper > pair.touchTolerance())) return 0.0;
   // g.lower is certified whether or not GJK closed its gap.

@@ -278,6 +278,48 @@ TEST(Distance, RandomBlobs) {
   EXPECT_GE(t.penetrating, samples(300) / 10);
 }
 
+// separationLowerBound: never above the distance, within GJK's certified gap
+// of it on separated pairs, 0 on overlapping ones; with `enough`, at least
+// `enough` (or the distance, when that is smaller) and still never above it.
+TEST(Distance, SeparationLowerBoundBracketsTheDistance) {
+  Rng rng(seed(808));
+  int separated = 0, overlapping = 0, stopped_early = 0;
+  for (int i = 0; i < samples(300) && !HasFailure(); ++i) {
+    const double s = std::pow(10.0, uniform(rng, -2.0, 2.0));
+    const ConvexPolytope a = ConvexPolytope::fromPoints(randomBlob(rng, s));
+    const ConvexPolytope b = ConvexPolytope::fromPoints(randomBlob(rng, s));
+    DistanceInput in;
+    in.a = &a;
+    in.b = &b;
+    in.X_WB = randomPose(rng, 2.5 * s);
+    in.X_WA = randomPose(rng, 1.0 * s);
+    const double d = distance(in).distance;
+    const double slack = 1e-9 * (a.radius() + b.radius() + std::abs(d));
+    const double lb = separationLowerBound(in);
+    EXPECT_LE(lb, std::max(d, 0.0) + slack) << i;
+    if (d > slack) {
+      ++separated;
+      EXPECT_GE(lb, d - 1e-6 * (a.radius() + b.radius() + d)) << i;
+      const double half = separationLowerBound(in, nullptr, 0.5 * d);
+      EXPECT_GE(half, 0.5 * d) << i;
+      EXPECT_LE(half, d + slack) << i;
+      stopped_early += half < lb ? 1 : 0;
+    } else if (d < -slack) {
+      ++overlapping;
+      EXPECT_EQ(lb, 0.0) << i;
+      EXPECT_EQ(separationLowerBound(in, nullptr, 1.0), 0.0) << i;
+    }
+  }
+  EXPECT_GE(separated, samples(300) / 3);
+  EXPECT_GE(overlapping, samples(300) / 10);
+  EXPECT_GE(stopped_early, separated / 10);  // `enough` does cut GJK short
+  DistanceInput in;
+  const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box(Eigen::Vector3d::Constant(0.5)));
+  in.a = &cube;
+  in.b = &cube;
+  EXPECT_THROW(separationLowerBound(in, nullptr, std::numeric_limits<double>::quiet_NaN()), InvalidInputError);
+}
+
 TEST(Distance, RandomBoxes) {
   Rng rng(seed(202));
   Tally t;

@@ -102,8 +102,11 @@ DistanceResult distance(const DistanceInput& input, DistanceWarmStart* warm = nu
 /// GJK's certified support-function bound (a point of M is at most
 /// kDistanceGapRel * L farther), or 0 when the bodies meet within the touch
 /// tolerance (no depth is computed: far cheaper than distance() on
-/// overlapping pairs). Never above the true distance. Errors and thread
-/// safety as distance().
-double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm = nullptr);
+/// overlapping pairs). Never above the true distance. GJK stops as soon as
+/// its bound reaches `enough` (then the answer is >= enough but may be below
+/// the distance): what a nearest-pair search needs of a pair that cannot beat
+/// its best so far. Errors and thread safety as distance().
+double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm = nullptr,
+                            double enough = std::numeric_limits<double>::infinity());
 
 }  // namespace mddual

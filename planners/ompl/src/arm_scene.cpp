@@ -27,6 +27,12 @@ std::vector<const ConvexPolytope*> polytopesOf(const std::vector<scene::Piece>& 
   return out;
 }
 
+/// Links of more pieces than this get cluster hulls (a coarse level for the
+/// bound queries) of at most this many pieces each. On arm7's 480-triangle
+/// links (mddual_bench_arm_edges, bookshelf_thin) clusters of 24 cut the
+/// time of a motion check 4x against the pieces alone, for 1% more queries.
+constexpr int kMaxCluster = 24;
+
 }  // namespace
 
 /// What one checkEdge call carries through the recursion.
@@ -62,13 +68,25 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
   if (options_.max_depth < 1 || options_.max_depth > 200) {
     throw InvalidInputError("ArmScene: max_depth must be in [1, 200]");
   }
-  world_tree_ = Bvh::fromPolytopes(polytopesOf(world_->pieces()));
+  world_polytopes_ = polytopesOf(world_->pieces());
+  world_tree_ = Bvh::fromPolytopes(world_polytopes_);
   const int nl = model_->numLinks();
   link_trees_.resize(static_cast<std::size_t>(nl));
+  link_polytopes_.resize(static_cast<std::size_t>(nl));
+  link_clusters_.resize(static_cast<std::size_t>(nl));
+  cluster_polytopes_.resize(static_cast<std::size_t>(nl));
+  cluster_trees_.resize(static_cast<std::size_t>(nl));
   double reach = 0.0;
   for (int k = 0; k < nl; ++k) {
     const scene::Link& link = model_->link(k);
-    if (!link.pieces.empty()) link_trees_[static_cast<std::size_t>(k)] = Bvh::fromPolytopes(polytopesOf(link.pieces));
+    const std::size_t ku = static_cast<std::size_t>(k);
+    link_polytopes_[ku] = polytopesOf(link.pieces);
+    if (!link.pieces.empty()) link_trees_[ku] = Bvh::fromPolytopes(link_polytopes_[ku]);
+    if (static_cast<int>(link.pieces.size()) > kMaxCluster) {
+      link_clusters_[ku] = scene::clusterHulls(link.pieces, kMaxCluster);
+      for (const ConvexPolytope& h : link_clusters_[ku]) cluster_polytopes_[ku].push_back(&h);
+      cluster_trees_[ku] = Bvh::fromPolytopes(cluster_polytopes_[ku]);
+    }
     if (link.parent_joint >= 0) reach = std::max(reach, model_->reach(model_->jointPath(k).front(), k));
   }
   scale_ = std::max({1.0, reach, world_->box().isEmpty() ? 0.0 : world_->box().diagonal().norm()});
@@ -134,17 +152,39 @@ ArmScene::PairView ArmScene::view(const Pair& p, const std::vector<Eigen::Isomet
 
 double ArmScene::pairBound(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, double upper) const {
   const PairView v = view(p, X_WL);
-  const NearestHit hit = nearestPair(
-      *v.a_tree, *v.b_tree, v.X_AB,
-      [&](int i, int j, double /*best*/) {
-        DistanceInput in;
-        in.a = &(*v.a)[static_cast<std::size_t>(i)].polytope;
-        in.b = &(*v.b)[static_cast<std::size_t>(j)].polytope;
-        in.X_WB = v.X_AB;
-        return separationLowerBound(in);
-      },
-      upper);
-  return hit.value;
+  const auto search = [&](const Bvh& a_tree, const std::vector<const ConvexPolytope*>& a, const Bvh& b_tree,
+                          const std::vector<const ConvexPolytope*>& b) {
+    return nearestPair(
+               a_tree, b_tree, v.X_AB,
+               [&](int i, int j, double best) {
+                 DistanceInput in;
+                 in.a = a[static_cast<std::size_t>(i)];
+                 in.b = b[static_cast<std::size_t>(j)];
+                 in.X_WB = v.X_AB;
+                 return separationLowerBound(in, nullptr, best);
+               },
+               upper)
+        .value;
+  };
+  // 1. Coarse: a link of many pieces by its clusters' hulls (each holds its
+  //    pieces, so the bound stays a lower bound). Enough unless the pair
+  //    comes within the contact distance.
+  const int side_a = p.other < 0 ? -1 : p.link;
+  const int side_b = p.other < 0 ? p.link : p.other;
+  const Side a = side(side_a, true), b = side(side_b, true);
+  const double coarse = search(*a.tree, *a.polytopes, *b.tree, *b.polytopes);
+  if (!a.coarse && !b.coarse) return coarse;
+  if (coarse > options_.contact_distance) return coarse;
+  // 2. The pieces themselves.
+  const Side fa = side(side_a, false), fb = side(side_b, false);
+  return search(*fa.tree, *fa.polytopes, *fb.tree, *fb.polytopes);
+}
+
+ArmScene::Side ArmScene::side(int link, bool coarse) const {
+  if (link < 0) return {&world_tree_, &world_polytopes_, false};
+  const std::size_t k = static_cast<std::size_t>(link);
+  if (coarse && !link_clusters_[k].empty()) return {&cluster_trees_[k], &cluster_polytopes_[k], true};
+  return {&link_trees_[k], &link_polytopes_[k], false};
 }
 
 bool ArmScene::pairCollides(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "mddual/error.h"
+
 namespace mddual::scene {
 namespace {
 
@@ -26,6 +28,39 @@ Piece Piece::make(ConvexPolytope polytope, PieceKind kind, std::string origin) {
   p.centre = p.polytope.centroid();
   p.radius = p.polytope.radius();
   return p;
+}
+
+std::vector<ConvexPolytope> clusterHulls(const std::vector<Piece>& pieces, int max_per_cluster) {
+  if (max_per_cluster < 1) throw InvalidInputError("clusterHulls: max_per_cluster must be >= 1");
+  if (pieces.empty()) return {};
+  std::vector<int> order(pieces.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::vector<ConvexPolytope> out;
+  const auto split = [&](auto&& self, std::size_t begin, std::size_t end) -> void {
+    if (end - begin <= static_cast<std::size_t>(max_per_cluster)) {
+      std::vector<Eigen::Vector3d> points;
+      for (std::size_t i = begin; i < end; ++i) {
+        const auto& v = pieces[static_cast<std::size_t>(order[i])].polytope.vertices();
+        points.insert(points.end(), v.begin(), v.end());
+      }
+      out.push_back(ConvexPolytope::fromPoints(points));
+      return;
+    }
+    Eigen::AlignedBox3d box;
+    for (std::size_t i = begin; i < end; ++i) box.extend(pieces[static_cast<std::size_t>(order[i])].centre);
+    int axis = 0;
+    box.diagonal().maxCoeff(&axis);
+    const std::size_t mid = begin + (end - begin) / 2;
+    std::nth_element(
+        order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(mid),
+        order.begin() + static_cast<std::ptrdiff_t>(end), [&](int x, int y) {
+          return pieces[static_cast<std::size_t>(x)].centre[axis] < pieces[static_cast<std::size_t>(y)].centre[axis];
+        });
+    self(self, begin, mid);
+    self(self, mid, end);
+  };
+  split(split, 0, order.size());
+  return out;
 }
 
 AabbTree::AabbTree(const std::vector<Eigen::AlignedBox3d>& boxes) : boxes_(boxes), order_(boxes.size()) {

@@ -1,6 +1,8 @@
 // The scene model: AabbTree queries against a brute-force scan,
 // transformedBox (contains the posed corners, and is tight), and worlds that
-// change (ids, indices, bounds and candidates after random updates).
+// change (ids, indices, bounds and candidates after random updates);
+// clusterHulls (every piece inside one hull, hulls no larger than their
+// pieces).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,6 +93,71 @@ TEST(TransformedBox, ContainsThePosedCornersAndIsTight) {
     EXPECT_LE((out.min() - corners_box.min()).cwiseAbs().maxCoeff(), 1e-12);
     EXPECT_LE((out.max() - corners_box.max()).cwiseAbs().maxCoeff(), 1e-12);
   }
+}
+
+/// Whether every vertex of `piece` is inside `hull` (within `tol`).
+bool holds(const ConvexPolytope& hull, const ConvexPolytope& piece, double tol) {
+  for (const Eigen::Vector3d& v : piece.vertices()) {
+    for (int f = 0; f < hull.numFaces(); ++f) {
+      if (hull.faceNormal(f).dot(v) > hull.faceOffset(f) + tol) return false;
+    }
+  }
+  return true;
+}
+
+TEST(ClusterHulls, EveryPieceIsInsideOneHullAndHullsAreTight) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> pos(-1.0, 1.0);
+  std::uniform_real_distribution<double> small(-0.05, 0.05);
+  std::vector<Piece> pieces;
+  for (int i = 0; i < 200; ++i) {
+    const Eigen::Vector3d c(pos(rng), pos(rng), pos(rng));
+    std::vector<Eigen::Vector3d> corners;
+    for (int k = 0; k < 3; ++k) {
+      const double x = small(rng);
+      const double y = small(rng);
+      const double z = small(rng);
+      corners.push_back(c + Eigen::Vector3d(x, y, z));
+    }
+    pieces.push_back(Piece::make(ConvexPolytope::fromPoints(corners), PieceKind::kTriangle, "triangle"));
+  }
+  const std::vector<ConvexPolytope> hulls = clusterHulls(pieces, 24);
+  // 200 pieces in halves down to at most 24: 16 groups of 12 or 13.
+  ASSERT_EQ(hulls.size(), 16u);
+  int far_apart = 0;  // pieces outside at least one other hull: the guard that hulls are not all one
+  for (const Piece& p : pieces) {
+    int inside = 0;
+    for (const ConvexPolytope& h : hulls) inside += holds(h, p.polytope, 1e-12) ? 1 : 0;
+    EXPECT_GE(inside, 1) << p.origin;
+    far_apart += inside < static_cast<int>(hulls.size()) ? 1 : 0;
+  }
+  EXPECT_EQ(far_apart, 200);
+  // Tight: every corner of a hull is a corner of a piece.
+  for (const ConvexPolytope& h : hulls) {
+    for (const Eigen::Vector3d& v : h.vertices()) {
+      bool found = false;
+      for (const Piece& p : pieces) {
+        for (const Eigen::Vector3d& w : p.polytope.vertices()) found = found || (v - w).norm() <= 1e-12;
+      }
+      EXPECT_TRUE(found);
+    }
+  }
+}
+
+TEST(ClusterHulls, SmallSetsAndBadArguments) {
+  EXPECT_TRUE(clusterHulls({}, 4).empty());
+  std::vector<Piece> pieces;
+  pieces.push_back(Piece::make(
+      ConvexPolytope::fromPoints({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)}),
+      PieceKind::kTriangle, "a"));
+  pieces.push_back(Piece::make(
+      ConvexPolytope::fromPoints({Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 0, 1), Eigen::Vector3d(0, 1, 1)}),
+      PieceKind::kTriangle, "b"));
+  const std::vector<ConvexPolytope> one = clusterHulls(pieces, 2);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].numVertices(), 6);  // the prism of both triangles
+  EXPECT_EQ(clusterHulls(pieces, 1).size(), 2u);
+  EXPECT_THROW(clusterHulls(pieces, 0), InvalidInputError);
 }
 
 TEST(RigidBody, RejectsNoPiecesAndComputesBounds) {

@@ -141,6 +141,14 @@ class ArmScene {
   /// Lower bound of pair p's distance at link poses X_WL, searched below
   /// `upper`: +infinity when every piece pair is at least `upper` apart.
   double pairBound(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, double upper) const;
+  /// One side of a pair for pairBound: the world (link < 0) or a link, by
+  /// its cluster hulls (`coarse`, where it has them) or its pieces.
+  struct Side {
+    const Bvh* tree;
+    const std::vector<const ConvexPolytope*>* polytopes;
+    bool coarse;
+  };
+  Side side(int link, bool coarse) const;
   bool pairCollides(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const;
   double pairDistance(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const;
   /// checkEdge's search for the first contact of pair p on [a, b], every
@@ -154,7 +162,14 @@ class ArmScene {
   Eigen::Isometry3d X_WB_;
   ArmSceneOptions options_;
   Bvh world_tree_;
+  std::vector<const ConvexPolytope*> world_polytopes_;
   std::vector<Bvh> link_trees_;  ///< per link, frame L (empty for links without pieces)
+  std::vector<std::vector<const ConvexPolytope*>> link_polytopes_;
+  /// Per link of many pieces, the hulls of clusters of them (frame L) and
+  /// their tree: the coarse level of pairBound. Empty for other links.
+  std::vector<std::vector<ConvexPolytope>> link_clusters_;
+  std::vector<std::vector<const ConvexPolytope*>> cluster_polytopes_;
+  std::vector<Bvh> cluster_trees_;
   std::vector<std::pair<int, int>> self_pairs_;
   std::vector<Pair> pairs_;
   double scale_ = 1.0;  ///< size of the robot and world (round-off slack)

@@ -46,6 +46,14 @@ struct Piece {
   static Piece make(ConvexPolytope polytope, PieceKind kind, std::string origin);
 };
 
+/// The convex hulls of groups of nearby pieces (frame of the pieces): median
+/// splits of the pieces' centres along the longest side of their box, down
+/// to groups of at most max_per_cluster pieces, in that order. Each hull
+/// holds every point of its pieces, so a distance to it bounds the distances
+/// to its pieces from below: a coarse level for bound queries on a mesh
+/// loaded as triangles. Throws InvalidInputError for max_per_cluster < 1.
+std::vector<ConvexPolytope> clusterHulls(const std::vector<Piece>& pieces, int max_per_cluster);
+
 /// A static tree of axis-aligned boxes (median splits), built once.
 class AabbTree {
  public:

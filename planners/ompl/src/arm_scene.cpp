@@ -46,9 +46,25 @@ struct ArmScene::EdgeWork {
   /// Search only below this fraction (the best first contact so far).
   double limit = kInf;
 
+  /// Joint axes at the probe (world frame): a point of each and its direction.
+  std::vector<Eigen::Vector3d> o_W, u_W;
+  /// pairWindow's scratch.
+  std::vector<double> suffix_a, suffix_b;
+  std::vector<std::pair<int, int>> stack;
+
   void poseAt(const ArmScene& scene, double t) {
     for (std::size_t v = 0; v < dq.size(); ++v) q[v] = q0[v] + t * dq[v];
     scene.linkPoses(q.data(), &X_WL);
+    const scene::RobotModel& m = scene.model();
+    o_W.resize(m.joints().size());
+    u_W.resize(o_W.size());
+    for (int j = 0; j < static_cast<int>(m.joints().size()); ++j) {
+      const scene::Joint& joint = m.joint(j);
+      if (!joint.moves()) continue;
+      const Eigen::Isometry3d& X_WC = X_WL[static_cast<std::size_t>(joint.child_link)];
+      o_W[static_cast<std::size_t>(j)] = X_WC.translation();
+      u_W[static_cast<std::size_t>(j)] = X_WC.linear() * joint.axis_J;
+    }
   }
 };
 
@@ -94,11 +110,14 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
   const int nv = model_->numVariables();
   // Per variable, how far the joints it drives on `joints` can move link k.
   auto addReach = [&](Pair* pair, const std::vector<int>& joints, int k) {
+    std::vector<Mover>& movers = k == pair->link ? pair->link_movers : pair->other_movers;
     for (int j : joints) {
       const scene::Joint& joint = model_->joint(j);
       if (!joint.moves()) continue;
-      const double r = joint.type == scene::JointType::kPrismatic ? 1.0 : model_->reach(j, k);
+      const bool prismatic = joint.type == scene::JointType::kPrismatic;
+      const double r = prismatic ? 1.0 : model_->reach(j, k);
       pair->reach[static_cast<std::size_t>(joint.variable)] += std::abs(joint.multiplier) * r;
+      movers.push_back({j, joint.variable, std::abs(joint.multiplier), prismatic, r});
     }
   };
   if (!world_->pieces().empty()) {
@@ -240,6 +259,106 @@ double ArmScene::clearance(const double* q, ArmContact* which) const {
   return best;
 }
 
+double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau) const {
+  // One side: its tree (cluster hulls where the link has them), pose and
+  // the joints that move it, with the suffix sums of their motion bounds.
+  struct Moving {
+    Side side;
+    Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+    const std::vector<Mover>* movers = nullptr;
+    const std::vector<double>* suffix = nullptr;  ///< suffix[i]: bound of the motion of movers i, i+1, ...
+  };
+  const auto make = [&](int link, const std::vector<Mover>* movers, std::vector<double>* suffix) {
+    Moving m;
+    m.side = side(link, true);
+    if (link < 0) return m;
+    m.X_WS = w.X_WL[static_cast<std::size_t>(link)];
+    m.movers = movers;
+    m.suffix = suffix;
+    suffix->assign(movers->size() + 1, 0.0);
+    for (std::size_t i = movers->size(); i-- > 0;) {
+      const Mover& mv = (*movers)[i];
+      (*suffix)[i] =
+          (*suffix)[i + 1] + std::abs(w.dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier * mv.reach;
+    }
+    return m;
+  };
+  const Moving A = p.other < 0 ? make(-1, nullptr, nullptr) : make(p.link, &p.link_movers, &w.suffix_a);
+  const Moving B =
+      p.other < 0 ? make(p.link, &p.link_movers, &w.suffix_b) : make(p.other, &p.other_movers, &w.suffix_b);
+  // How fast (world units per unit t) a point of a ball (centre c_W, radius
+  // r) of a side can move while |t - probe| <= tau: per joint, its speed
+  // times the ball's distance from the joint's axis now, plus how far the
+  // later joints can carry the ball meanwhile, and never more than the
+  // joint's reach.
+  const auto rate = [&](const Moving& m, const Eigen::Vector3d& c_W, double r) {
+    if (m.movers == nullptr) return 0.0;
+    double rho = 0.0;
+    for (std::size_t i = 0; i < m.movers->size(); ++i) {
+      const Mover& mv = (*m.movers)[i];
+      const double speed = std::abs(w.dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier;
+      if (speed == 0.0) continue;
+      if (mv.prismatic) {
+        rho += speed;
+        continue;
+      }
+      const std::size_t j = static_cast<std::size_t>(mv.joint);
+      const Eigen::Vector3d v = c_W - w.o_W[j];
+      const double from_axis = (v - v.dot(w.u_W[j]) * w.u_W[j]).norm() + r + tau * (*m.suffix)[i + 1];
+      rho += speed * std::min(mv.reach, from_axis);
+    }
+    return rho * (1.0 + kRateSlackRel);
+  };
+  const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
+  double best = tau;
+  std::vector<std::pair<int, int>>& stack = w.stack;
+  stack.clear();
+  stack.push_back({A.side.tree->root(), B.side.tree->root()});
+  while (!stack.empty()) {
+    const auto [ea, eb] = stack.back();
+    stack.pop_back();
+    const Bvh::Node& na = A.side.tree->node(ea);
+    const Bvh::Node& nb = B.side.tree->node(eb);
+    const Eigen::Vector3d ca_W = A.X_WS * na.centre;
+    const Eigen::Vector3d cb_W = B.X_WS * nb.centre;
+    const double rho = rate(A, ca_W, na.radius) + rate(B, cb_W, nb.radius);
+    const double slack = kBvhSlackRel * (na.scale + nb.scale + scale_);
+    const double bound = (ca_W - cb_W).norm() - na.radius - nb.radius - slack;
+    if (bound - cd >= best * rho) continue;  // keeps cd for the window found so far
+    if (na.isLeaf() && nb.isLeaf()) {
+      DistanceInput in;
+      in.a = (*A.side.polytopes)[static_cast<std::size_t>(A.side.tree->leafPiece(ea))];
+      in.X_WA = A.X_WS;
+      in.b = (*B.side.polytopes)[static_cast<std::size_t>(B.side.tree->leafPiece(eb))];
+      in.X_WB = B.X_WS;
+      const double d = separationLowerBound(in, nullptr, cd + best * rho);
+      if (d <= cd) return -1.0;
+      if (rho > 0.0) best = std::min(best, (d - cd) / rho);
+      continue;
+    }
+    // Split the larger node (a leaf never); the child nearer the other
+    // node is visited first, so that the window shrinks early.
+    const bool split_a = nb.isLeaf() || (!na.isLeaf() && na.radius >= nb.radius);
+    const Bvh& tree = split_a ? *A.side.tree : *B.side.tree;
+    const Bvh::Node& n = split_a ? na : nb;
+    const Eigen::Isometry3d& X_WN = split_a ? A.X_WS : B.X_WS;
+    const Eigen::Vector3d& other_W = split_a ? cb_W : ca_W;
+    int near = n.left, far = n.right;
+    if ((X_WN * tree.node(far).centre - other_W).norm() - tree.node(far).radius <
+        (X_WN * tree.node(near).centre - other_W).norm() - tree.node(near).radius) {
+      std::swap(near, far);
+    }
+    if (split_a) {
+      stack.emplace_back(far, eb);
+      stack.emplace_back(near, eb);
+    } else {
+      stack.emplace_back(ea, far);
+      stack.emplace_back(ea, near);
+    }
+  }
+  return best;
+}
+
 bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const {
   const Pair& pair = pairs_[static_cast<std::size_t>(p)];
   if (a >= w.limit) return false;
@@ -259,24 +378,32 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
   if (depth > options_.max_depth || b - a < kMinInterval) return contactAt(a, false);
   const double tm = 0.5 * (a + b);
   w.poseAt(*this, tm);
-  const double e = 0.5 * (b - a) * rate + kRateSlackRel * scale_ * 1e-3;
-  // Every state of [a, b] keeps at least the contact distance when the
-  // midpoint's bound exceeds it by the motion e.
-  const double cd = options_.contact_distance;
-  const double upper = e + cd;
   ++r.distance_queries;
-  const double d = pairBound(pair, w.X_WL, upper);
-  if (d >= upper) return false;  // clear of the contact distance on all of [a, b]
-  if (d <= cd) {
-    // A contact (or near-contact) at tm. The first one: certify [a, tm) first.
-    const bool state = pairCollides(pair, w.X_WL, nullptr);
-    if (w.query == EdgeQuery::kValidity || rate == 0.0) return contactAt(rate == 0.0 ? a : tm, state);
-    if (certify(w, p, a, tm, depth + 1)) return true;
-    return contactAt(tm, state);
+  // 1. Each node pair's own motion bound: the window around tm where the
+  //    pair keeps the contact distance, up to the interval's half-width.
+  const double tau = 0.5 * (b - a);
+  const double cd = options_.contact_distance;
+  double window = rate == 0.0 || pair.other < 0 ? -1.0 : pairWindow(w, pair, tau);
+  if (window >= tau) return false;  // clear of the contact distance on all of [a, b]
+  if (window < 0.0) {
+    // 2. Some piece pair's coarse bound is within the contact distance at
+    //    tm: the pieces themselves, with the pair's motion bound.
+    const double e = tau * rate + kRateSlackRel * scale_ * 1e-3;
+    const double upper = e + cd;
+    const double d = pairBound(pair, w.X_WL, upper);
+    if (d >= upper) return false;
+    if (d <= cd) {
+      // A contact (or near-contact) at tm. The first one: certify [a, tm) first.
+      const bool state = pairCollides(pair, w.X_WL, nullptr);
+      if (w.query == EdgeQuery::kValidity || rate == 0.0) return contactAt(rate == 0.0 ? a : tm, state);
+      if (certify(w, p, a, tm, depth + 1)) return true;
+      return contactAt(tm, state);
+    }
+    // Clear of the contact distance within (d - cd) / rate of tm: the
+    // distance changes at most `rate` per unit t.
+    window = (d - cd) / rate;
   }
-  // Clear of the contact distance within (d - cd) / rate of tm: the distance
-  // changes at most `rate` per unit t.
-  const double window = (d - cd) / rate * (1.0 - kRateSlackRel);
+  window *= 1.0 - kRateSlackRel;
   if (tm - window > a && certify(w, p, a, tm - window, depth + 1)) return true;
   if (tm + window < b && certify(w, p, tm + window, b, depth + 1)) return true;
   return false;

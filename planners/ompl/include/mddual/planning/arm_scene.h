@@ -120,6 +120,15 @@ class ArmScene {
   int numPairs() const { return static_cast<int>(pairs_.size()); }
 
  private:
+  /// A joint that moves one side of a pair relative to the other, with the
+  /// farthest a point of that side gets from its origin (prismatic: 1).
+  struct Mover {
+    int joint = -1;
+    int variable = -1;
+    double multiplier = 1.0;  ///< |multiplier| of a mimic joint, else 1
+    bool prismatic = false;
+    double reach = 0.0;
+  };
   /// One checked pair: link `link` against the world (other = -1) or link `other`.
   struct Pair {
     int link = -1;
@@ -127,6 +136,10 @@ class ArmScene {
     /// Per variable v: how far (world units per unit change of v) a point of
     /// the pair moves relative to the other side, at most.
     std::vector<double> reach;
+    /// The joints that move `link` and `other` relative to the other side
+    /// (below their common ancestor), root first.
+    std::vector<Mover> link_movers;
+    std::vector<Mover> other_movers;
   };
   /// The two sides of a pair at link poses X_WL: side A (the world, or link
   /// `link`) and side B (link `link`, or `other`) posed at X_AB in A's frame.
@@ -154,6 +167,11 @@ class ArmScene {
   /// checkEdge's search for the first contact of pair p on [a, b], every
   /// state before a being free; true when it found one (recorded in w).
   struct EdgeWork;
+  /// The time window around the probe of `w` (at most tau) in which pair p
+  /// keeps the contact distance, from each node pair's own motion bound
+  /// (docs/design/arms.md); a negative value when the coarse bound of some
+  /// piece pair is already within the contact distance at the probe.
+  double pairWindow(EdgeWork& w, const Pair& p, double tau) const;
   bool certify(EdgeWork& w, int p, double a, double b, int depth) const;
 
   std::shared_ptr<const scene::RobotModel> model_;

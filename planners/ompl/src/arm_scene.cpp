@@ -37,34 +37,56 @@ constexpr int kMaxCluster = 24;
 
 /// What one checkEdge call carries through the recursion.
 struct ArmScene::EdgeWork {
+  /// The robot at one time of the edge: link poses and joint axes (world
+  /// frame: a point of each axis and its direction).
+  struct Probe {
+    double t = -1.0;
+    std::vector<Eigen::Isometry3d> X_WL;
+    std::vector<Eigen::Vector3d> o_W, u_W;
+  };
+  /// Probes kept: every pair's search starts at t = 1/2 (slot 0, kept for the
+  /// whole edge); the others go round the remaining slots.
+  static constexpr std::size_t kProbes = 9;
+
   const double* q0 = nullptr;
   std::vector<double> dq;
   EdgeQuery query = EdgeQuery::kValidity;
   std::vector<double> q;
-  std::vector<Eigen::Isometry3d> X_WL;
   ArmEdgeResult* result = nullptr;
   /// Search only below this fraction (the best first contact so far).
   double limit = kInf;
-
-  /// Joint axes at the probe (world frame): a point of each and its direction.
-  std::vector<Eigen::Vector3d> o_W, u_W;
+  std::vector<Probe> probes = std::vector<Probe>(kProbes);
+  std::size_t next = 1;
+  /// The current probe (poseAt()).
+  const Probe* at = nullptr;
   /// pairWindow's scratch.
   std::vector<double> suffix_a, suffix_b;
   std::vector<std::pair<int, int>> stack;
 
+  /// Makes `at` the robot at time t, computed or kept from before.
   void poseAt(const ArmScene& scene, double t) {
+    for (const Probe& p : probes) {
+      if (p.t == t) {
+        at = &p;
+        return;
+      }
+    }
+    Probe& p = probes[t == 0.5 ? 0 : next];
+    if (t != 0.5) next = next + 1 < kProbes ? next + 1 : 1;
+    p.t = t;
     for (std::size_t v = 0; v < dq.size(); ++v) q[v] = q0[v] + t * dq[v];
-    scene.linkPoses(q.data(), &X_WL);
+    scene.linkPoses(q.data(), &p.X_WL);
     const scene::RobotModel& m = scene.model();
-    o_W.resize(m.joints().size());
-    u_W.resize(o_W.size());
+    p.o_W.resize(m.joints().size());
+    p.u_W.resize(p.o_W.size());
     for (int j = 0; j < static_cast<int>(m.joints().size()); ++j) {
       const scene::Joint& joint = m.joint(j);
       if (!joint.moves()) continue;
-      const Eigen::Isometry3d& X_WC = X_WL[static_cast<std::size_t>(joint.child_link)];
-      o_W[static_cast<std::size_t>(j)] = X_WC.translation();
-      u_W[static_cast<std::size_t>(j)] = X_WC.linear() * joint.axis_J;
+      const Eigen::Isometry3d& X_WC = p.X_WL[static_cast<std::size_t>(joint.child_link)];
+      p.o_W[static_cast<std::size_t>(j)] = X_WC.translation();
+      p.u_W[static_cast<std::size_t>(j)] = X_WC.linear() * joint.axis_J;
     }
+    at = &p;
   }
 };
 
@@ -199,6 +221,11 @@ double ArmScene::pairBound(const Pair& p, const std::vector<Eigen::Isometry3d>& 
   return search(*fa.tree, *fa.polytopes, *fb.tree, *fb.polytopes);
 }
 
+bool ArmScene::hasClusters(const Pair& p) const {
+  return !link_clusters_[static_cast<std::size_t>(p.link)].empty() ||
+         (p.other >= 0 && !link_clusters_[static_cast<std::size_t>(p.other)].empty());
+}
+
 ArmScene::Side ArmScene::side(int link, bool coarse) const {
   if (link < 0) return {&world_tree_, &world_polytopes_, false};
   const std::size_t k = static_cast<std::size_t>(link);
@@ -259,20 +286,22 @@ double ArmScene::clearance(const double* q, ArmContact* which) const {
   return best;
 }
 
-double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau) const {
+double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse) const {
   // One side: its tree (cluster hulls where the link has them), pose and
   // the joints that move it, with the suffix sums of their motion bounds.
   struct Moving {
     Side side;
     Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d X_SW = Eigen::Isometry3d::Identity();
     const std::vector<Mover>* movers = nullptr;
     const std::vector<double>* suffix = nullptr;  ///< suffix[i]: bound of the motion of movers i, i+1, ...
   };
   const auto make = [&](int link, const std::vector<Mover>* movers, std::vector<double>* suffix) {
     Moving m;
-    m.side = side(link, true);
+    m.side = side(link, coarse);
     if (link < 0) return m;
-    m.X_WS = w.X_WL[static_cast<std::size_t>(link)];
+    m.X_WS = w.at->X_WL[static_cast<std::size_t>(link)];
+    m.X_SW = m.X_WS.inverse();
     m.movers = movers;
     m.suffix = suffix;
     suffix->assign(movers->size() + 1, 0.0);
@@ -303,8 +332,8 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau) const {
         continue;
       }
       const std::size_t j = static_cast<std::size_t>(mv.joint);
-      const Eigen::Vector3d v = c_W - w.o_W[j];
-      const double from_axis = (v - v.dot(w.u_W[j]) * w.u_W[j]).norm() + r + tau * (*m.suffix)[i + 1];
+      const Eigen::Vector3d v = c_W - w.at->o_W[j];
+      const double from_axis = (v - v.dot(w.at->u_W[j]) * w.at->u_W[j]).norm() + r + tau * (*m.suffix)[i + 1];
       rho += speed * std::min(mv.reach, from_axis);
     }
     return rho * (1.0 + kRateSlackRel);
@@ -323,7 +352,15 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau) const {
     const Eigen::Vector3d cb_W = B.X_WS * nb.centre;
     const double rho = rate(A, ca_W, na.radius) + rate(B, cb_W, nb.radius);
     const double slack = kBvhSlackRel * (na.scale + nb.scale + scale_);
-    const double bound = (ca_W - cb_W).norm() - na.radius - nb.radius - slack;
+    // The larger of the balls' gap and each ball's gap to the other node's
+    // box (in that node's frame): boxes are far tighter than balls on flat
+    // pieces such as shelves.
+    const auto ballToBox = [](const Bvh::Node& n, const Eigen::Vector3d& c_S, double r) {
+      return (n.box.min() - c_S).cwiseMax(c_S - n.box.max()).cwiseMax(0.0).norm() - r;
+    };
+    const double bound = std::max({(ca_W - cb_W).norm() - na.radius - nb.radius,
+                                   ballToBox(na, A.X_SW * cb_W, nb.radius), ballToBox(nb, B.X_SW * ca_W, na.radius)}) -
+                         slack;
     if (bound - cd >= best * rho) continue;  // keeps cd for the window found so far
     if (na.isLeaf() && nb.isLeaf()) {
       DistanceInput in;
@@ -383,18 +420,19 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
   //    pair keeps the contact distance, up to the interval's half-width.
   const double tau = 0.5 * (b - a);
   const double cd = options_.contact_distance;
-  double window = rate == 0.0 || pair.other < 0 ? -1.0 : pairWindow(w, pair, tau);
+  double window = rate == 0.0 ? -1.0 : pairWindow(w, pair, tau, true);
+  if (window < 0.0 && rate > 0.0 && hasClusters(pair)) window = pairWindow(w, pair, tau, false);
   if (window >= tau) return false;  // clear of the contact distance on all of [a, b]
   if (window < 0.0) {
     // 2. Some piece pair's coarse bound is within the contact distance at
     //    tm: the pieces themselves, with the pair's motion bound.
     const double e = tau * rate + kRateSlackRel * scale_ * 1e-3;
     const double upper = e + cd;
-    const double d = pairBound(pair, w.X_WL, upper);
+    const double d = pairBound(pair, w.at->X_WL, upper);
     if (d >= upper) return false;
     if (d <= cd) {
       // A contact (or near-contact) at tm. The first one: certify [a, tm) first.
-      const bool state = pairCollides(pair, w.X_WL, nullptr);
+      const bool state = pairCollides(pair, w.at->X_WL, nullptr);
       if (w.query == EdgeQuery::kValidity || rate == 0.0) return contactAt(rate == 0.0 ? a : tm, state);
       if (certify(w, p, a, tm, depth + 1)) return true;
       return contactAt(tm, state);
@@ -432,7 +470,7 @@ ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery 
     for (const double t : {1.0, 0.5, 0.25, 0.75}) {
       w.poseAt(*this, t);
       for (const Pair& pair : pairs_) {
-        if (!pairCollides(pair, w.X_WL, &which)) continue;
+        if (!pairCollides(pair, w.at->X_WL, &which)) continue;
         result.collides = true;
         result.fraction = t;
         result.state_collides = true;

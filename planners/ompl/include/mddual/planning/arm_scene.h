@@ -171,7 +171,10 @@ class ArmScene {
   /// keeps the contact distance, from each node pair's own motion bound
   /// (docs/design/arms.md); a negative value when the coarse bound of some
   /// piece pair is already within the contact distance at the probe.
-  double pairWindow(EdgeWork& w, const Pair& p, double tau) const;
+  /// `coarse`: on the links' cluster hulls where they have them, else on their pieces.
+  double pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse) const;
+  /// Whether a side of p has cluster hulls.
+  bool hasClusters(const Pair& p) const;
   bool certify(EdgeWork& w, int p, double a, double b, int depth) const;
 
   std::shared_ptr<const scene::RobotModel> model_;

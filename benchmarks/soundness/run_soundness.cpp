@@ -1,0 +1,110 @@
+// The soundness suite's runner: every case family (cases.h) with every
+// checker, against the ground truth; writes one Markdown table row per
+// (family, checker). scripts/run-soundness.sh runs it and files the table.
+//
+//   mddual_soundness [--edges N] [--seed S] [--out FILE] [--family NAME]...
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cases.h"
+
+namespace {
+
+using namespace mddual::soundness;
+
+struct Tally {
+  int edges = 0;
+  int colliding = 0;
+  int missed = 0;
+  int false_alarms = 0;
+  std::vector<double> seconds;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int usage(const char* message) {
+  std::cerr << "mddual_soundness: " << message
+            << "\nusage: mddual_soundness [--edges N] [--seed S] [--out FILE] [--family NAME]...\n";
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int edges = 200;
+  std::uint64_t seed = 1;
+  std::string out_path;
+  std::vector<std::string> families;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (i + 1 >= argc) return usage(("missing the value of " + arg).c_str());
+    const std::string value = argv[++i];
+    if (arg == "--edges") {
+      edges = std::atoi(value.c_str());
+    } else if (arg == "--seed") {
+      seed = std::strtoull(value.c_str(), nullptr, 10);
+    } else if (arg == "--out") {
+      out_path = value;
+    } else if (arg == "--family") {
+      families.push_back(value);
+    } else {
+      return usage(("unknown argument " + arg).c_str());
+    }
+  }
+  if (edges < 1) return usage("--edges must be at least 1");
+  if (families.empty()) families = familyNames();
+
+  std::ostringstream table;
+  table << "| case | checker | edges | colliding edges | missed | false alarms | median time per edge (us) |\n"
+        << "|---|---|---|---|---|---|---|\n";
+  for (const std::string& family : families) {
+    const std::vector<Case> cases = makeFamily(family, seed, edges);
+    std::map<std::string, Tally> tallies;
+    for (const Case& c : cases) {
+      const Scene scene = buildScene(c);
+      std::vector<Truth> truths;
+      for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) truths.push_back(groundTruth(c, scene, e));
+      for (const std::string& checker : checkerNames()) {
+        const CheckerRun run = runChecker(*makeChecker(checker, scene), c, scene);
+        Tally& t = tallies[checker];
+        for (std::size_t e = 0; e < truths.size(); ++e) {
+          ++t.edges;
+          t.colliding += truths[e].collides;
+          t.missed += truths[e].collides && run.valid[e];
+          t.false_alarms += !truths[e].collides && !run.valid[e];
+          t.seconds.push_back(run.seconds[e]);
+        }
+      }
+    }
+    for (const std::string& checker : checkerNames()) {
+      const Tally& t = tallies[checker];
+      char time[32];
+      std::snprintf(time, sizeof time, "%.3g", median(t.seconds) * 1e6);
+      table << "| " << family << " | " << checker << " | " << t.edges << " | " << t.colliding << " | " << t.missed
+            << " | " << t.false_alarms << " | " << time << " |\n";
+    }
+    std::cerr << "mddual_soundness: " << family << " done\n";
+  }
+  std::cout << table.str();
+  if (!out_path.empty()) {
+    std::ofstream out(out_path);
+    out << table.str();
+    if (!out) {
+      std::cerr << "mddual_soundness: cannot write " << out_path << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}

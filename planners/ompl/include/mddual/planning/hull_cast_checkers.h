@@ -1,0 +1,84 @@
+// A peer baseline on Bullet: the "cast" continuous check of MoveIt's and
+// Tesseract's Bullet collision plugins, over exactly the same pieces as the
+// MDD and FCL checkers.
+//
+//   - HullCastScene: for an edge from pose A to pose B, each robot piece is
+//     replaced by the convex hull of its vertices at A and at B (a
+//     btConvexHullShape in the world frame, margin 0: the swept hull that
+//     MoveIt's Bullet cast builds from the two poses), and that hull is
+//     tested against every world piece the broad phase (scene::World's box
+//     tree, on the hull's bounding box) reports, with Bullet's GJK/EPA
+//     (btGjkEpaSolver2::Penetration); each world piece is a btConvexHullShape
+//     of its vertices (a mesh triangle is a flat hull of three points).
+//   - HullCastMotionValidator: an OMPL MotionValidator on it.
+//
+// The hull of the two end poses is the swept volume of a translation, so on
+// translating edges the check is exact up to Bullet's GJK tolerance. On a
+// rotating edge a point of the robot moves on an arc that leaves that hull
+// (a long link turning about one end sweeps the circular sector between its
+// end poses, the hull only the triangle), so a collision inside the arc and
+// outside the hull is MISSED: this validator is NOT sound on rotating edges.
+// It exists to measure that failure next to the certified MddMotionValidator
+// (benchmarks/soundness, docs/results/soundness.md).
+//
+// lastValid: the cast cannot localise a contact, so on an invalid edge
+// lastValid is (copy of s1, 0), the only answer OMPL's contract allows
+// without a time of contact.
+//
+// Thread safety: the world's Bullet shapes are built once and only read; the
+// swept hulls are made per call.
+#pragma once
+
+#include <ompl/base/MotionValidator.h>
+#include <ompl/base/SpaceInformation.h>
+#include <ompl/util/ClassForward.h>
+#include <Eigen/Geometry>
+#include <memory>
+#include <utility>
+
+#include "mddual/planning/counters.h"
+#include "mddual/planning/state_space.h"
+#include "mddual/scene/scene.h"
+
+namespace mddual::planning {
+
+OMPL_CLASS_FORWARD(HullCastScene);
+OMPL_CLASS_FORWARD(HullCastMotionValidator);
+
+/// Bullet's model of a robot and a world built from the same pieces (see above).
+class HullCastScene {
+ public:
+  /// Throws InvalidInputError for a null robot or world.
+  HullCastScene(std::shared_ptr<const scene::RigidBody> robot, std::shared_ptr<const scene::World> world);
+  ~HullCastScene();
+  HullCastScene(const HullCastScene&) = delete;
+  HullCastScene& operator=(const HullCastScene&) = delete;
+
+  /// Whether the hull of some robot piece at X_a and at X_b overlaps a world
+  /// piece (Bullet's GJK/EPA). pair_queries: narrow-phase calls.
+  bool castCollides(const Eigen::Isometry3d& X_a, const Eigen::Isometry3d& X_b, int* pair_queries = nullptr) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Motion validity by the swept hull of the two end poses (see the file
+/// comment): exact on translations, misses contacts of rotating edges that
+/// leave the hull. Both ends must satisfy the space's bounds.
+class HullCastMotionValidator : public CountedMotionValidator {
+ public:
+  /// Throws InvalidInputError for a null argument or a mismatched state space.
+  HullCastMotionValidator(const ompl::base::SpaceInformationPtr& si, PlanningSpacePtr space,
+                          std::shared_ptr<const HullCastScene> scene);
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  /// On an invalid edge lastValid = (copy of s1, 0) (no time of contact).
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+ private:
+  PlanningSpacePtr space_;
+  std::shared_ptr<const HullCastScene> scene_;
+};
+
+}  // namespace mddual::planning

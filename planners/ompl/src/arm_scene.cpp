@@ -466,11 +466,17 @@ ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery 
     // The end, the middle and the quarters, as OMPL's discrete check orders
     // its first samples: a state that collides settles most colliding edges
     // for a few state checks, before any search.
+    // The pair that found the last contact goes first: a planner meets the
+    // same obstacle again and again.
     ArmContact which;
+    const int first = last_contact_.load(std::memory_order_relaxed);
     for (const double t : {1.0, 0.5, 0.25, 0.75}) {
       w.poseAt(*this, t);
-      for (const Pair& pair : pairs_) {
-        if (!pairCollides(pair, w.at->X_WL, &which)) continue;
+      for (int i = -1; i < numPairs(); ++i) {
+        const int p = i < 0 ? first : i;
+        if (p < 0 || (i >= 0 && p == first)) continue;
+        if (!pairCollides(pairs_[static_cast<std::size_t>(p)], w.at->X_WL, &which)) continue;
+        last_contact_.store(p, std::memory_order_relaxed);
         result.collides = true;
         result.fraction = t;
         result.state_collides = true;
@@ -481,8 +487,11 @@ ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery 
   }
   // Pair by pair; with a first contact, each pair searches only before the
   // best contact so far (EdgeWork::limit).
-  for (int p = 0; p < numPairs(); ++p) {
-    certify(w, p, 0.0, 1.0, 0);
+  const int first = query == EdgeQuery::kValidity ? last_contact_.load(std::memory_order_relaxed) : -1;
+  for (int i = -1; i < numPairs(); ++i) {
+    const int p = i < 0 ? first : i;
+    if (p < 0 || (i >= 0 && p == first)) continue;
+    if (certify(w, p, 0.0, 1.0, 0)) last_contact_.store(p, std::memory_order_relaxed);
     if (result.collides && query == EdgeQuery::kValidity) break;
   }
   return result;

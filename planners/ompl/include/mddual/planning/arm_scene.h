@@ -29,6 +29,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <limits>
 #include <memory>
 #include <string>
@@ -194,6 +195,9 @@ class ArmScene {
   std::vector<std::pair<int, int>> self_pairs_;
   std::vector<Pair> pairs_;
   double scale_ = 1.0;  ///< size of the robot and world (round-off slack)
+  /// The pair of the last contact a validity check found: checked first
+  /// next time (a hint only; any thread may overwrite it).
+  mutable std::atomic<int> last_contact_{-1};
 };
 
 }  // namespace mddual::planning

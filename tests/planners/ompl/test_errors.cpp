@@ -289,7 +289,7 @@ TEST(Errors, MisusedApiCallsAreNamed) {
   const MddScene& mdd = *fx.mdd;
   const EdgeMotion motion = fx.space->motion(s.get(), s.get());
   expectError([&] { mdd.checkEdge(motion, static_cast<EdgeQuery>(9)); }, "unknown query 9");
-  expectError([&] { mdd.setPiece(0, -1); }, "robot piece -1 does not exist");
+  expectError([&] { mdd.pieceInSet(0, -1); }, "robot piece -1 does not exist");
   expectError([&] { mdd.enlargedPiece(99, 0); }, "enlargement level 99 does not exist");
   expectError([&] { mdd.sweepSet(9, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), 1.0, true); },
               "piece set 9 does not exist");

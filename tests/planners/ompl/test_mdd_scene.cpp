@@ -59,7 +59,7 @@ struct WorldBoxes {
 bool pairLoopCollides(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR) {
   const WorldBoxes world(mdd);
   for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
-    const scene::Piece& piece = mdd.setPiece(set, i);
+    const scene::Piece& piece = mdd.pieceInSet(set, i);
     for (int j : world.meeting(posedBox(piece.polytope, X_WR))) {
       IntersectInput in;
       in.a = &mdd.world().pieces()[static_cast<std::size_t>(j)].polytope;
@@ -79,7 +79,7 @@ double pairLoopSweep(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR
   const WorldBoxes world(mdd);
   double best = kInf;
   for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
-    const scene::Piece& piece = mdd.setPiece(set, i);
+    const scene::Piece& piece = mdd.pieceInSet(set, i);
     Eigen::Isometry3d X_end = X_WR;
     X_end.pretranslate(max_distance * v_W.normalized());
     Eigen::AlignedBox3d swept = posedBox(piece.polytope, X_WR);

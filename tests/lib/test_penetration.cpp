@@ -9,6 +9,7 @@
 #include <random>
 
 #include "mddual/brute_force.h"
+#include "mddual/constants.h"
 #include "mddual/defaults.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
@@ -23,7 +24,6 @@ using generators::Points;
 using generators::Rng;
 
 constexpr double kTol = 1e-9;
-constexpr double kPi = 3.14159265358979323846;
 const PenetrationMethod kAllMethods[] = {PenetrationMethod::kExact, PenetrationMethod::kShallow,
                                          PenetrationMethod::kApprox, PenetrationMethod::kBruteForce};
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/polytope.h"
@@ -283,7 +284,7 @@ TEST(Polytope, PrismEqualsTheHullOfItsCornersForACoplanarBase) {
   const Eigen::Vector3d centre(3.0, -2.0, 7.5);
   Points base;
   for (int i = 0; i < 7; ++i) {
-    const double a = 2.0 * M_PI * i / 7.0 + 0.3;
+    const double a = 2.0 * kPi * i / 7.0 + 0.3;
     base.push_back(centre + q * Eigen::Vector3d(0.8 * std::cos(a), 0.5 * std::sin(a), 0.0));
   }
   const double h = 0.25;
@@ -313,7 +314,7 @@ TEST(Polytope, PrismOfALargeBaseIsBuiltWithoutItsHierarchyAndSupportsExactly) {
   Points base;
   const int n = 2000;
   for (int i = 0; i < n; ++i) {
-    const double a = 2.0 * M_PI * i / n;
+    const double a = 2.0 * kPi * i / n;
     base.emplace_back(0.3 * std::cos(a), 0.3 * std::sin(a), i == 5 ? 0.01 : (i == 900 ? -0.02 : 0.0));
   }
   const double h = 1e-3;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/planning/clearance.h"
@@ -253,7 +254,7 @@ TEST(Errors, RotationsThatAreNoStateAnswerAtOnce) {
     if (kind == SpaceKind::kSE3) {
       expectError([&] { fx.space->motion(s1.get(), s2.get()); }, "motion: s2's quaternion is zero or not finite");
     } else {
-      EXPECT_LE(fx.space->motion(s1.get(), s2.get()).angle, M_PI);
+      EXPECT_LE(fx.space->motion(s1.get(), s2.get()).angle, kPi);
     }
     // An infinite position: both overloads say invalid (the one with
     // lastValid threw "positions must be finite").

@@ -11,6 +11,7 @@
 #include "mddual/generators.h"
 #include "mddual/polytope.h"
 #include "qhull_wrapper.h"
+#include "test_shapes.h"
 
 namespace mddual {
 namespace {
@@ -84,7 +85,7 @@ TEST(Polytope, OtherFaceCrossesEachEdgeToItsNeighbour) {
 
 TEST(Polytope, LatticeKeepsOnlyCornersAndMergesCoplanarFacets) {
   // 4 x 4 x 4 lattice points: 56 boundary points, but a cube.
-  const ConvexPolytope p = ConvexPolytope::fromPoints(generators::lattice(3, 3, 3, 1.0));
+  const ConvexPolytope p = ConvexPolytope::fromPoints(testing::lattice(3, 3, 3, 1.0));
   EXPECT_EQ(p.numVertices(), 8);
   EXPECT_EQ(p.numFaces(), 6);
   expectWellFormed(p);
@@ -120,7 +121,7 @@ TEST(Polytope, FlatTriangleHasTwoOppositeFaces) {
 
 TEST(Polytope, FlatPolygonFromManyCoplanarPoints) {
   // A planar lattice tilted in space: a flat square with 4 corners.
-  Points points = generators::lattice(4, 4, 0, 0.5);
+  Points points = testing::lattice(4, 4, 0, 0.5);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   for (Eigen::Vector3d& p : points) p = R * p + Eigen::Vector3d(3, -2, 1);
   const ConvexPolytope p = ConvexPolytope::fromPoints(points);

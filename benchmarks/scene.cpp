@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "mddual/brute_force.h"
+#include "mddual/constants.h"
 #include "mddual/defaults.h"
 #include "mddual/generators.h"
 #include "mddual/query.h"
@@ -13,7 +14,6 @@ namespace mddual::bench {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 /// Scene scale for "relative" errors: every polytope lies within radius 5.
 constexpr double kScale = 10.0;
 /// Agreement required between two exact answers (relative to kScale).

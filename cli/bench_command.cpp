@@ -38,6 +38,7 @@
 #include "mddual/planning/arm_bench.h"
 #include "mddual/planning/bench_logs.h"
 #include "mddual/planning/bench_runner.h"
+#include "mddual/planning/checker_registry.h"
 
 extern char** environ;
 
@@ -369,10 +370,10 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
 
-  void checker(mp::CheckerKind kind, int index) {
+  void checker(const std::string& name, int index) {
     const std::lock_guard<std::mutex> lock(mutex_);
     finishPlannerLocked();
-    checker_ = mp::toString(kind);
+    checker_ = name;
     checker_index_ = index;
     planner_.clear();
   }
@@ -506,7 +507,7 @@ void runArmBenchCommand(const BenchFlags& f) {
   if (!f.last_valid_level.empty()) throw FatalError("--last-valid-level: applies to cfg problems only");
   mp::ArmBenchOptions options;
   try {
-    options.checkers = mp::parseArmCheckerList(f.checkers.empty() ? "mdd,fcl,fcl-fine" : f.checkers);
+    if (!f.checkers.empty()) options.checkers = mp::parseArmCheckerList(f.checkers);
     if (!f.shard.empty()) options.shard = mp::parseShard(f.shard);
   } catch (const InvalidInputError& e) {
     throw FatalError(std::string("--checkers/--shard: ") + e.what());
@@ -579,7 +580,7 @@ void runBenchCommand(const BenchFlags& f) {
 
   mp::BenchOptions options;
   try {
-    options.checkers = mp::parseCheckerList(f.checkers.empty() ? "mdd,fcl,fcl-continuous" : f.checkers);
+    if (!f.checkers.empty()) options.checkers = mp::parseCheckerList(f.checkers);
   } catch (const InvalidInputError& e) {
     throw FatalError(std::string("--checkers: ") + e.what());
   }
@@ -592,7 +593,7 @@ void runBenchCommand(const BenchFlags& f) {
   if (!f.runs.empty()) options.runs = static_cast<int>(parsePositiveInt("--runs", f.runs));
   if (!f.time_limit.empty()) options.time_limit = parsePositiveReal("--time-limit", f.time_limit);
   if (!f.last_valid_level.empty()) {
-    if (std::find(options.checkers.begin(), options.checkers.end(), mp::CheckerKind::kMdd) == options.checkers.end()) {
+    if (std::find(options.checkers.begin(), options.checkers.end(), "mdd") == options.checkers.end()) {
       throw FatalError("--last-valid-level: it sets the mdd checker, which --checkers leaves out");
     }
     options.setup.mdd.last_valid_level =
@@ -633,15 +634,15 @@ void runBenchCommand(const BenchFlags& f) {
   mp::BenchObserver observer;
   // The scene summary once the runs start (after runBench has checked the
   // flags, whose errors are one line): pieces, meshes, hollow soups.
-  observer.checker_started = [&](mp::CheckerKind k, int i, int) {
+  observer.checker_started = [&](const std::string& k, int i, int) {
     if (i == 0) std::cerr << "bench: scene: " << scene::sceneSummary(*problem.scene) << "\n";
     progress.checker(k, i);
   };
-  observer.planner_started = [&](mp::CheckerKind, const std::string& name, int i, int n, int runs) {
+  observer.planner_started = [&](const std::string&, const std::string& name, int i, int n, int runs) {
     progress.planner(name, i, n, runs);
   };
-  observer.run_started = [&](mp::CheckerKind, const std::string&, int k, int, int) { progress.run(k); };
-  observer.run_finished = [&](mp::CheckerKind, const std::string&, int, bool solved, bool verified, bool invalid) {
+  observer.run_started = [&](const std::string&, const std::string&, int k, int, int) { progress.run(k); };
+  observer.run_finished = [&](const std::string&, const std::string&, int, bool solved, bool verified, bool invalid) {
     progress.finished(solved, verified, invalid);
   };
   std::vector<mp::BenchLog> logs;
@@ -666,20 +667,34 @@ void runBenchCommand(const BenchFlags& f) {
   buildReport(*tools, options.output_dir, files);
 }
 
-constexpr const char* kBenchFooter =
-    "For each checker (mdd: MDD-DUAL exact edges; fcl: FCL states + OMPL's discrete motion validator at the\n"
-    "space's resolution; fcl-continuous: FCL conservative advancement), the cfg's problem and planners in\n"
-    "ompl::tools::Benchmark with the cfg's limits (flags override them). Writes one OMPL benchmark log per\n"
-    "checker (experiment <config>-<checker>) to DIR (default out/bench/<config>/), verifies every solution\n"
-    "path (exact MDD edge check with a 1e-6 rotation tolerance + dense FCL check), then builds DIR/bench.db\n"
-    "(ompl_benchmark_statistics), DIR/plots/*.png and DIR/summary.md and prints the summary table.\n"
-    "--shard I/N runs runs r with r mod N = I only, seeds OMPL with a splitmix64 hash of (seed, I, N) and\n"
-    "skips the report: run `mddual bench-report DIR` when every shard is done. Before planning, the start and\n"
-    "goal states are checked (within the bounds, free of the world by the exact test and by each checker).\n"
-    "A MotionBenchMaker problem directory (sceneNNNN.yaml, requestNNNN.yaml) with --robot URDF --srdf SRDF\n"
-    "runs each problem with mdd (certified arm edges), fcl (OMPL's discrete validator) and fcl-fine (1/32 rad\n"
-    "segments), the requests' planner_id unless --planners says otherwise; --shard I/N splits the problems.\n"
-    "Exit status 2 for bad input.";
+/// The checker tables (checker_registry.h) as the footer lists them: one
+/// "  NAME  DESCRIPTION" line each.
+template <class Entry>
+std::string checkerLines(const std::vector<Entry>& table) {
+  std::string out;
+  for (const Entry& e : table) {
+    std::string name = e.name;
+    name.resize(std::max<std::size_t>(name.size() + 2, 16), ' ');
+    out += "  " + name + e.description + "\n";
+  }
+  return out;
+}
+
+std::string benchFooter() {
+  return "For each checker, the cfg's problem and planners in ompl::tools::Benchmark with the cfg's limits (flags\n"
+         "override them). Writes one OMPL benchmark log per checker (experiment <config>-<checker>) to DIR (default\n"
+         "out/bench/<config>/), verifies every solution path (exact MDD edge check with a 1e-6 rotation tolerance\n"
+         "+ dense FCL check), then builds DIR/bench.db (ompl_benchmark_statistics), DIR/plots/*.png and\n"
+         "DIR/summary.md and prints the summary table. Checkers of a cfg (--checkers; default all, in this order):\n" +
+         checkerLines(mp::rigidCheckers()) +
+         "--shard I/N runs runs r with r mod N = I only, seeds OMPL with a splitmix64 hash of (seed, I, N) and\n"
+         "skips the report: run `mddual bench-report DIR` when every shard is done. Before planning, the start and\n"
+         "goal states are checked (within the bounds, free of the world by the exact test and by each checker).\n"
+         "A MotionBenchMaker problem directory (sceneNNNN.yaml, requestNNNN.yaml) with --robot URDF --srdf SRDF\n"
+         "runs each problem with each arm checker, the requests' planner_id unless --planners says otherwise;\n"
+         "--shard I/N splits the problems. Arm checkers (--checkers; default all, in this order):\n" +
+         checkerLines(mp::armCheckers()) + "Exit status 2 for bad input.";
+}
 
 /// A text option whose value is kept as given for the command to parse. Given
 /// with an empty value it is an error, not its default (a hostile-input hunt:
@@ -707,14 +722,12 @@ void registerBenchCommand(CLI::App& app) {
   auto flags = std::make_shared<BenchFlags>();
   CLI::App* sub =
       app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");
-  sub->footer(kBenchFooter);
+  sub->footer(benchFooter());
   sub->add_option("config", flags->config,
                   "benchmark config (OMPL.app .cfg), or a MotionBenchMaker problem directory (with --robot, --srdf)")
       ->option_text("CONFIG.cfg|PROBLEM_DIR");
   textOption(sub, "--checkers", &flags->checkers,
-             "comma-separated: mdd, fcl, fcl-continuous for a cfg; mdd, fcl, fcl-fine for a problem directory "
-             "(default: all three)",
-             "LIST");
+             "comma-separated checker names, of a cfg's or of an arm's (see below; default: all)", "LIST");
   textOption(sub, "--planners", &flags->planners,
              "comma-separated planner names: the cfg's, or any OMPL planner with its default parameters (default: "
              "the cfg's)",

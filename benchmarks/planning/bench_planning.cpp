@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "bench_support.h"
+#include "mddual/constants.h"
 #include "mddual/generators.h"
 #include "mddual/planning/example_scenes.h"
 #include "mddual/planning/fcl_checkers.h"
@@ -52,7 +53,7 @@ namespace {
 namespace ob = ompl::base;
 namespace mp = mddual::planning;
 using Rng = std::mt19937_64;
-constexpr double kPi = 3.14159265358979323846;
+using mddual::kPi;
 
 struct Options {
   int states = 20000;

@@ -231,8 +231,8 @@ std::string num(const char* format, double v) {
 
 void benchConfig(const std::string& cfg, const std::string& planner, const Options& opt) {
   const mp::Problem problem = mp::loadProblem(cfg);
-  mp::ProblemSetup mdd(problem, mp::CheckerKind::kMdd);
-  mp::ProblemSetup fcl(problem, mp::CheckerKind::kFcl);
+  mp::ProblemSetup mdd(problem, "mdd");
+  mp::ProblemSetup fcl(problem, "fcl");
   const ob::SpaceInformationPtr& si = mdd.spaceInformation();
   const ob::MotionValidatorPtr mdd_validator = si->getMotionValidator();
   Recording rec;

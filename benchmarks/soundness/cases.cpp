@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/planning/example_scenes.h"
@@ -12,7 +13,6 @@ namespace mddual::soundness {
 namespace {
 
 using Rng = std::mt19937_64;
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxTries = 1000;
 
 double uniform(Rng& rng, double lo, double hi) {

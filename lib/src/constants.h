@@ -5,10 +5,11 @@
 
 #include <limits>
 
+#include "mddual/constants.h"  // kPi
+
 namespace mddual::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-inline constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace mddual::detail

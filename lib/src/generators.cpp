@@ -9,8 +9,6 @@
 namespace mddual::generators {
 namespace {
 
-using detail::kPi;
-
 /// Ring of k points on the ellipse (a cos t, b sin t) at height z.
 void ellipseRing(int k, double a, double b, double z, double phase, Points* out) {
   for (int i = 0; i < k; ++i) {
@@ -120,21 +118,8 @@ Points prism(int k, double r, double h) {
   return p;
 }
 
-Points lattice(int nx, int ny, int nz, double spacing) {
-  Points p;
-  for (int i = 0; i <= nx; ++i)
-    for (int j = 0; j <= ny; ++j)
-      for (int k = 0; k <= nz; ++k) p.emplace_back(spacing * i, spacing * j, spacing * k);
-  return p;
-}
-
 Points triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
   return {p, q, r};
-}
-
-Points regularTetrahedron(double edge) {
-  const double s = edge / (2.0 * std::sqrt(2.0));
-  return {Eigen::Vector3d(s, s, s), Eigen::Vector3d(s, -s, -s), Eigen::Vector3d(-s, s, -s), Eigen::Vector3d(-s, -s, s)};
 }
 
 Eigen::Matrix3d randomRotation(Rng& rng) {

@@ -43,8 +43,6 @@
 namespace mddual {
 namespace {
 
-using detail::kPi;
-
 /// Largest angle between the centre (phi, 0) of a cell and its corners
 /// (phi +- half_polar, half_azimuth).
 double cornerAngle(double phi, double half_polar, double half_azimuth) {

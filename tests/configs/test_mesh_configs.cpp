@@ -13,6 +13,7 @@
 #include <map>
 #include <numeric>
 
+#include "mddual/constants.h"
 #include "mddual/query.h"
 #include "mddual/scene/loaders.h"
 #include "mddual/scene/problem_config.h"
@@ -59,7 +60,7 @@ PoseSpec at(double x, double y, double z, const Eigen::Vector3d& axis = Eigen::V
 }
 
 const std::vector<MeshConfig>& meshConfigs() {
-  const double kHalfTurn = 0.5 * M_PI;
+  const double kHalfTurn = 0.5 * kPi;
   static const std::vector<MeshConfig> configs = {
       // Blocked: across the cup's wall; turned across the slot; across a
       // partition; across the hall's wall; across the maze's outer wall.
@@ -293,7 +294,7 @@ TEST_P(MeshConfigs, LoadsWithValidMeshesStartGoalAndWitnessPath) {
 // 0.6875 m slot did not (scripts/make_configs.py, twistycool()).
 TEST(TwistycoolSlot, TheBarMustScrewThroughAndTheSlotAllowsIt) {
   const ProblemScene s = loadProblemScene(readProblemConfig(kConfigs / "twistycool" / "twistycool.cfg"));
-  const double screw = M_PI / 4;  // rad per metre of the bar's position (twist / length)
+  const double screw = kPi / 4;  // rad per metre of the bar's position (twist / length)
   const auto pose = [](double x, double beta) {
     return toIsometry(PoseSpec{Eigen::Vector3d(x, 0, 0), Eigen::Vector3d::UnitX(), beta}, SpaceKind::kSE3);
   };

@@ -47,7 +47,6 @@ using testing::EdgeTally;
 using testing::Fixture;
 
 const fs::path kConfigs = MDDUAL_CONFIGS_DIR;
-using testing::kPi;
 
 // ---- The sample (lengths in robot radii r, the robot's bounding radius) ----
 /// A config and its sample sizes at scale 1 (the whole test, five configs:

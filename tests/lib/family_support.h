@@ -7,6 +7,7 @@
 #include <random>
 
 #include "mddual/generators.h"
+#include "test_shapes.h"
 
 namespace mddual::testing {
 
@@ -58,7 +59,7 @@ inline generators::Points randomLattice(generators::Rng& rng) {
   const int nz = uniformInt(rng, 1, 3);
   const int ny = uniformInt(rng, 1, 3);
   const int nx = uniformInt(rng, 1, 3);
-  return generators::lattice(nx, ny, nz, 1.0);
+  return lattice(nx, ny, nz, 1.0);
 }
 
 /// Prisms over a regular k-gon (B's: k or 2k sides at random) of circumradius

@@ -17,6 +17,7 @@
 
 #include "family_support.h"
 #include "mddual/brute_force.h"
+#include "mddual/constants.h"
 #include "mddual/distance.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
@@ -253,7 +254,7 @@ TEST(Distance, ClosedFormUnitCubes) {
   in.a = &cube;
   in.b = &cube;
   in.X_WB =
-      pose(Eigen::AngleAxisd(M_PI / 4.0, Eigen::Vector3d::UnitZ()).toRotationMatrix(), Eigen::Vector3d(2.0, 0.0, 0.0));
+      pose(Eigen::AngleAxisd(kPi / 4.0, Eigen::Vector3d::UnitZ()).toRotationMatrix(), Eigen::Vector3d(2.0, 0.0, 0.0));
   const DistanceResult r = distance(in);
   EXPECT_NEAR(r.distance, 1.5 - std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(r.p_WA.x(), 0.5, 1e-12);

@@ -9,12 +9,14 @@
 #include <random>
 
 #include "mddual/brute_force.h"
+#include "mddual/constants.h"
 #include "mddual/defaults.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/penetration.h"
 #include "pair.h"
 #include "penetration_internal.h"
+#include "test_shapes.h"
 
 namespace mddual {
 namespace {
@@ -23,7 +25,6 @@ using generators::Points;
 using generators::Rng;
 
 constexpr double kTol = 1e-9;
-constexpr double kPi = 3.14159265358979323846;
 const PenetrationMethod kAllMethods[] = {PenetrationMethod::kExact, PenetrationMethod::kShallow,
                                          PenetrationMethod::kApprox, PenetrationMethod::kBruteForce};
 
@@ -297,8 +298,8 @@ TEST(Width, KnownSolidsInRandomPoses) {
   };
   std::vector<Case> cases = {
       {"cube, edge 2", generators::box({1, 1, 1}), 2.0},
-      {"regular tetrahedron, edge 1", generators::regularTetrahedron(1.0), 1.0 / std::sqrt(2.0)},
-      {"regular tetrahedron, edge 3", generators::regularTetrahedron(3.0), 3.0 / std::sqrt(2.0)},
+      {"regular tetrahedron, edge 1", testing::regularTetrahedron(1.0), 1.0 / std::sqrt(2.0)},
+      {"regular tetrahedron, edge 3", testing::regularTetrahedron(3.0), 3.0 / std::sqrt(2.0)},
       {"box 0.3 x 2 x 5", generators::box({0.15, 1.0, 2.5}), 0.3},
       {"box 4 x 3 x 5", generators::box({2.0, 1.5, 2.5}), 3.0},
   };
@@ -484,7 +485,7 @@ TEST(PenetrationErrors, BadInputsNameWhatIsWrong) {
               PolyhedralMetric::fromPoints({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}});
             }).find("flat"),
             std::string::npos);
-  const std::string asym = message([&] { PolyhedralMetric::fromPoints(generators::regularTetrahedron(1.0)); });
+  const std::string asym = message([&] { PolyhedralMetric::fromPoints(testing::regularTetrahedron(1.0)); });
   EXPECT_NE(asym.find("not centrally symmetric"), std::string::npos) << asym;
   EXPECT_NE(message([&] { PolyhedralMetric::fromPoints({}); }).find("polyhedral metric: "), std::string::npos);
   const PolyhedralMetric k = PolyhedralMetric::fromPoints(generators::box({1, 1, 1}));

@@ -6,10 +6,12 @@
 #include <cmath>
 #include <limits>
 
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/polytope.h"
 #include "qhull_wrapper.h"
+#include "test_shapes.h"
 
 namespace mddual {
 namespace {
@@ -83,7 +85,7 @@ TEST(Polytope, OtherFaceCrossesEachEdgeToItsNeighbour) {
 
 TEST(Polytope, LatticeKeepsOnlyCornersAndMergesCoplanarFacets) {
   // 4 x 4 x 4 lattice points: 56 boundary points, but a cube.
-  const ConvexPolytope p = ConvexPolytope::fromPoints(generators::lattice(3, 3, 3, 1.0));
+  const ConvexPolytope p = ConvexPolytope::fromPoints(testing::lattice(3, 3, 3, 1.0));
   EXPECT_EQ(p.numVertices(), 8);
   EXPECT_EQ(p.numFaces(), 6);
   expectWellFormed(p);
@@ -119,7 +121,7 @@ TEST(Polytope, FlatTriangleHasTwoOppositeFaces) {
 
 TEST(Polytope, FlatPolygonFromManyCoplanarPoints) {
   // A planar lattice tilted in space: a flat square with 4 corners.
-  Points points = generators::lattice(4, 4, 0, 0.5);
+  Points points = testing::lattice(4, 4, 0, 0.5);
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   for (Eigen::Vector3d& p : points) p = R * p + Eigen::Vector3d(3, -2, 1);
   const ConvexPolytope p = ConvexPolytope::fromPoints(points);
@@ -283,7 +285,7 @@ TEST(Polytope, PrismEqualsTheHullOfItsCornersForACoplanarBase) {
   const Eigen::Vector3d centre(3.0, -2.0, 7.5);
   Points base;
   for (int i = 0; i < 7; ++i) {
-    const double a = 2.0 * M_PI * i / 7.0 + 0.3;
+    const double a = 2.0 * kPi * i / 7.0 + 0.3;
     base.push_back(centre + q * Eigen::Vector3d(0.8 * std::cos(a), 0.5 * std::sin(a), 0.0));
   }
   const double h = 0.25;
@@ -313,7 +315,7 @@ TEST(Polytope, PrismOfALargeBaseIsBuiltWithoutItsHierarchyAndSupportsExactly) {
   Points base;
   const int n = 2000;
   for (int i = 0; i < n; ++i) {
-    const double a = 2.0 * M_PI * i / n;
+    const double a = 2.0 * kPi * i / n;
     base.emplace_back(0.3 * std::cos(a), 0.3 * std::sin(a), i == 5 ? 0.01 : (i == 900 ? -0.02 : 0.0));
   }
   const double h = 1e-3;

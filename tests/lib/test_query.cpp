@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "mddual/brute_force.h"
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/query.h"
@@ -208,7 +209,7 @@ TEST(Query, EdgeOnEdge) {
   // A: the cube turned 45 degrees about y, top edge along y at z = sqrt(2)/2.
   // B: a wedge whose lowest edge runs along x at z = 1.
   Eigen::Isometry3d X_WA = Eigen::Isometry3d::Identity();
-  X_WA.linear() = Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  X_WA.linear() = Eigen::AngleAxisd(kPi / 4, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const ConvexPolytope wedge = ConvexPolytope::fromPoints({{-1, 0, 1}, {1, 0, 1}, {0, -1, 2}, {0, 1, 2}});
   const MddResult r = mddOf(unitCube(), X_WA, wedge, at(0, 0, 0), {0, 0, -1});
   EXPECT_EQ(r.status, ContactStatus::kSeparated);
@@ -429,7 +430,7 @@ Eigen::Isometry3d randomPose(generators::Rng& rng) {
   const double y = 2.0 * unit(rng);
   const double x = 2.0 * unit(rng);
   X.translation() = Eigen::Vector3d(x, y, z);
-  X.linear() = unit(rng) > -0.5 ? Eigen::AngleAxisd(M_PI * unit(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix()
+  X.linear() = unit(rng) > -0.5 ? Eigen::AngleAxisd(kPi * unit(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix()
                                 : generators::randomRotation(rng);
   return X;
 }

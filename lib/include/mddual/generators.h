@@ -43,13 +43,8 @@ Points blob(int n, const Eigen::Vector3d& semi_axes, Rng& rng);
 Points box(const Eigen::Vector3d& half_extents);
 /// Right prism over a regular k-gon of circumradius r, height h, axis z.
 Points prism(int k, double r, double h);
-/// Integer lattice points {0..nx} x {0..ny} x {0..nz}, scaled: many coplanar
-/// and collinear points.
-Points lattice(int nx, int ny, int nz, double spacing);
 /// A triangle (flat polygon).
 Points triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r);
-/// Regular tetrahedron with edge length `edge`, centred at the origin.
-Points regularTetrahedron(double edge);
 
 /// Uniformly random rotation.
 Eigen::Matrix3d randomRotation(Rng& rng);

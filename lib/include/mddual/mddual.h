@@ -2,6 +2,7 @@
 #pragma once
 
 #include "mddual/brute_force.h"
+#include "mddual/constants.h"
 #include "mddual/defaults.h"
 #include "mddual/distance.h"
 #include "mddual/error.h"

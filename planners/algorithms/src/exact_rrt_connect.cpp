@@ -19,7 +19,7 @@ namespace mddual::planning {
 
 namespace ob = ompl::base;
 
-ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planner(si, "ExactRRTConnect") {
+ExactRRTConnect::ExactRRTConnect(const ob::SpaceInformationPtr& si) : ob::Planner(si, kExactRRTConnectName) {
   specs_.recognizedGoal = ob::GOAL_SAMPLEABLE_REGION;
   specs_.directed = true;
   Planner::declareParam<double>("range", this, &ExactRRTConnect::setRange, &ExactRRTConnect::getRange, "0.:1.:10000.");
@@ -59,30 +59,33 @@ std::string text(double value) {
 
 void ExactRRTConnect::setRange(double range) {
   if (!(range >= 0.0)) {
-    throw InvalidInputError("ExactRRTConnect: range must be >= 0 (0: unlimited), got " + text(range));
+    throw InvalidInputError(std::string(kExactRRTConnectName) + ": range must be >= 0 (0: unlimited), got " +
+                            text(range));
   }
   range_ = range;
 }
 
 void ExactRRTConnect::setBlockedRange(double range) {
   if (!(range >= 0.0) || !std::isfinite(range)) {
-    throw InvalidInputError(
-        "ExactRRTConnect: blocked_range must be a finite distance >= 0 (0: OMPL's default range), got " + text(range));
+    throw InvalidInputError(std::string(kExactRRTConnectName) +
+                            ": blocked_range must be a finite distance >= 0 (0: OMPL's default range), got " +
+                            text(range));
   }
   blocked_range_ = range;
 }
 
 void ExactRRTConnect::setMinProgress(double steps) {
   if (!(steps >= 0.0) || !std::isfinite(steps)) {
-    throw InvalidInputError("ExactRRTConnect: min_progress must be a finite number of steps >= 0, got " + text(steps));
+    throw InvalidInputError(std::string(kExactRRTConnectName) +
+                            ": min_progress must be a finite number of steps >= 0, got " + text(steps));
   }
   min_progress_ = steps;
 }
 
 void ExactRRTConnect::setProbeSteps(double steps) {
   if (!(steps >= 0.0) || !std::isfinite(steps)) {
-    throw InvalidInputError("ExactRRTConnect: probe_steps must be a finite number of steps >= 0 (0: no probe), got " +
-                            text(steps));
+    throw InvalidInputError(std::string(kExactRRTConnectName) +
+                            ": probe_steps must be a finite number of steps >= 0 (0: no probe), got " + text(steps));
   }
   probe_steps_ = steps;
 }

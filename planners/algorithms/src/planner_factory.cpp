@@ -116,7 +116,7 @@ const std::map<std::string, Allocator>& registry() {
       {"stride", make<og::STRIDE>()},
       {"trrt", make<og::TRRT>()},
       // ours
-      {"mdd_rrtconnect", make<ExactRRTConnect>()},
+      {kExactRRTConnectName, make<ExactRRTConnect>()},
   };
   return planners;
 }
@@ -125,13 +125,8 @@ const std::map<std::string, Allocator>& registry() {
 /// case) where they differ from OMPL.app's.
 const std::map<std::string, std::string>& aliases() {
   static const std::map<std::string, std::string> names{
-      {"anytimepathshortening", "aps"},
-      {"bkpiece1", "bkpiece"},
-      {"exactrrtconnect", "mdd_rrtconnect"},
-      {"kpiece1", "kpiece"},
-      {"lbkpiece1", "lbkpiece"},
-      {"rrt#", "rrtsharp"},
-      {"sparstwo", "spars2"},
+      {"anytimepathshortening", "aps"}, {"bkpiece1", "bkpiece"}, {"kpiece1", "kpiece"},
+      {"lbkpiece1", "lbkpiece"},        {"rrt#", "rrtsharp"},    {"sparstwo", "spars2"},
   };
   return names;
 }

@@ -1,7 +1,6 @@
 // The arm benchmark (arm_bench.h).
 #include "mddual/planning/arm_bench.h"
 
-#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/SimpleSetup.h>
 #include <ompl/tools/benchmark/Benchmark.h>
@@ -13,7 +12,6 @@
 #include <cstdio>
 #include <fstream>
 #include <set>
-#include <sstream>
 
 #include "mddual/error.h"
 #include "mddual/planning/arm_checkers.h"
@@ -37,48 +35,26 @@ using Clock = std::chrono::steady_clock;
 struct ArmSetup {
   ArmSpacePtr space;
   std::shared_ptr<og::SimpleSetup> ss;
-  std::shared_ptr<ArmStateValidityChecker> mdd_states;
-  std::shared_ptr<ArmMotionValidator> mdd_motions;
-  std::shared_ptr<FclArmStateValidityChecker> fcl_states;
+  InstalledChecker installed;
 
   void resetCounts() {
-    if (mdd_states) mdd_states->resetCounts();
-    if (mdd_motions) mdd_motions->resetCounts();
-    if (fcl_states) fcl_states->resetCounts();
+    installed.reset_counts();
     ss->getSpaceInformation()->getMotionValidator()->resetMotionCounter();
   }
   /// State checks and the time inside the checkers (the FCL discrete
   /// validator's time is its state checks').
   std::pair<std::uint64_t, double> counts() const {
-    CheckerCounts c;
-    if (mdd_states) {
-      c = mdd_states->counts();
-      c.seconds += mdd_motions->counts().seconds;
-    }
-    if (fcl_states) c = fcl_states->counts();
+    const CheckerCounts c = installed.counts();
     return {c.state_checks, c.seconds};
   }
 };
 
-ArmSetup makeSetup(const ArmProblem& p, ArmCheckerKind checker, const std::shared_ptr<const FclArmScene>& fcl,
+ArmSetup makeSetup(const ArmProblem& p, const ArmChecker& checker, const std::shared_ptr<const FclArmScene>& fcl,
                    double fine_resolution) {
   ArmSetup s;
   s.space = ArmSpace::make(p.space->modelPtr(), p.space->variables(), p.start);
   auto si = std::make_shared<ob::SpaceInformation>(s.space->stateSpace());
-  if (checker == ArmCheckerKind::kMdd) {
-    const ArmChecking c = useExactChecking(si, s.space, p.scene);
-    s.mdd_states = c.state_checker;
-    s.mdd_motions = c.motion_validator;
-  } else {
-    s.fcl_states = std::make_shared<FclArmStateValidityChecker>(si, s.space, fcl);
-    si->setStateValidityChecker(s.fcl_states);
-    si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
-    if (checker == ArmCheckerKind::kFclFine) {
-      s.space->stateSpace()->setup();
-      const double extent = s.space->stateSpace()->getMaximumExtent();
-      s.space->stateSpace()->setLongestValidSegmentFraction(std::min(1.0, fine_resolution / extent));
-    }
-  }
+  s.installed = checker.install({si, s.space, p.scene, fcl, fine_resolution});
   s.ss = std::make_shared<og::SimpleSetup>(si);
   ob::ScopedState<> start(si), goal(si);
   s.space->setState(start.get(), p.start.data());
@@ -121,39 +97,6 @@ Verdict verify(const ArmProblem& p, const ArmScene& exact, const FclArmScene& fc
 
 }  // namespace
 
-const char* toString(ArmCheckerKind kind) {
-  switch (kind) {
-    case ArmCheckerKind::kMdd: return "mdd";
-    case ArmCheckerKind::kFcl: return "fcl";
-    case ArmCheckerKind::kFclFine: return "fcl-fine";
-  }
-  return "unknown";
-}
-
-std::vector<ArmCheckerKind> parseArmCheckerList(const std::string& list) {
-  std::vector<ArmCheckerKind> out;
-  std::stringstream in(list);
-  std::string name;
-  while (std::getline(in, name, ',')) {
-    ArmCheckerKind kind;
-    if (name == "mdd") {
-      kind = ArmCheckerKind::kMdd;
-    } else if (name == "fcl") {
-      kind = ArmCheckerKind::kFcl;
-    } else if (name == "fcl-fine") {
-      kind = ArmCheckerKind::kFclFine;
-    } else {
-      throw InvalidInputError("unknown arm checker '" + clipForMessage(name) + "' (known: mdd, fcl, fcl-fine)");
-    }
-    if (std::find(out.begin(), out.end(), kind) != out.end()) {
-      throw InvalidInputError("checker '" + name + "' given twice");
-    }
-    out.push_back(kind);
-  }
-  if (out.empty()) throw InvalidInputError("no checker given");
-  return out;
-}
-
 std::string plannerFromPlannerId(const std::string& planner_id) {
   std::string name = planner_id;
   const std::string config = "kConfigDefault";
@@ -179,6 +122,7 @@ std::string plannerFromPlannerId(const std::string& planner_id) {
 std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesystem::path& problem_dir,
                                      const ArmBenchOptions& options, const ArmBenchObserver& observer) {
   if (options.checkers.empty()) throw InvalidInputError("bench: no checker given");
+  for (const std::string& name : options.checkers) findArmChecker(name);  // an unknown name fails now
   if (options.runs < 1) throw InvalidInputError("bench: runs must be at least 1");
   if (!(options.mem_limit > 0.0 && options.mem_limit <= kMaxMemLimit)) {
     throw InvalidInputError("bench: the memory limit must be in (0, " + real(kMaxMemLimit) + "] MB");
@@ -226,17 +170,17 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
     const double time_limit = options.time_limit > 0.0
                                   ? options.time_limit
                                   : (p.request.allowed_planning_time > 0.0 ? p.request.allowed_planning_time : 10.0);
-    for (ArmCheckerKind checker : options.checkers) {
-      ArmSetup setup = makeSetup(p, checker, fcl, options.fine_resolution);
+    for (const std::string& checker : options.checkers) {
+      ArmSetup setup = makeSetup(p, findArmChecker(checker), fcl, options.fine_resolution);
       ArmBenchLog log;
       log.problem = p.name;
       log.checker = checker;
       char number[16];
       std::snprintf(number, sizeof number, "%04d", p.files.number);
-      log.file = options.output_dir / (config + "-" + number + "-" + toString(checker) + ".log");
-      ot::Benchmark bench(*setup.ss, config + "-" + toString(checker));
+      log.file = options.output_dir / (config + "-" + number + "-" + checker + ".log");
+      ot::Benchmark bench(*setup.ss, config + "-" + checker);
       bench.addExperimentParameter("config", "STRING", config);
-      bench.addExperimentParameter("checker", "STRING", toString(checker));
+      bench.addExperimentParameter("checker", "STRING", checker);
       bench.addExperimentParameter("problem", "INTEGER", std::to_string(p.files.number));
       bench.addExperimentParameter("shard", "STRING", toString(options.shard));
       // The checkers' work is read the moment solve() returns (MeteredPlanner),

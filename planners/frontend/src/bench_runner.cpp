@@ -186,8 +186,8 @@ void checkShardSets(const std::vector<std::filesystem::path>& logs) {
   }
 }
 
-std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard) {
-  std::string name = config + "-" + toString(checker);
+std::string logFileName(const std::string& config, const std::string& checker, const BenchShard& shard) {
+  std::string name = config + "-" + checker;
   if (shard.sharded()) name += ".shard" + std::to_string(shard.index) + "of" + std::to_string(shard.count);
   return name + ".log";
 }
@@ -208,6 +208,7 @@ void checkBenchProblem(const Problem& problem) {
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options, const BenchObserver& observer) {
   const scene::ProblemConfig& cfg = problem.config;
   if (options.checkers.empty()) throw InvalidInputError("no checker to run");
+  for (const std::string& name : options.checkers) findRigidChecker(name);  // an unknown name fails now
   const int runs = options.runs.value_or(cfg.run_count);
   if (options.runs && runs < 1) throw InvalidInputError("--runs must be at least 1 (got " + std::to_string(runs) + ")");
   if (runs < 1) {
@@ -259,11 +260,11 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
   }
   std::vector<BenchLog> logs;
   for (std::size_t ci = 0; ci < options.checkers.size(); ++ci) {
-    const CheckerKind checker = options.checkers[ci];
+    const std::string& checker = options.checkers[ci];
     if (observer.checker_started)
       observer.checker_started(checker, static_cast<int>(ci), static_cast<int>(options.checkers.size()));
     ProblemSetup setup(problem, checker, options.setup);
-    const std::string experiment = problem.name + "-" + toString(checker);
+    const std::string experiment = problem.name + "-" + checker;
 
     // Planners in cfg order, named as in the cfg (repeats numbered); every
     // context tried once now, so that a bad value fails here and not inside
@@ -304,7 +305,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
 
     ot::Benchmark bench(setup.simpleSetup(), experiment);
     bench.addExperimentParameter("config", "STRING", problem.name);
-    bench.addExperimentParameter("checker", "STRING", toString(checker));
+    bench.addExperimentParameter("checker", "STRING", checker);
     bench.addExperimentParameter("shard", "STRING", toString(shard));
     for (const ob::PlannerPtr& p : planners) bench.addPlanner(p);
 

@@ -1,6 +1,5 @@
 #include "mddual/planning/problem_setup.h"
 
-#include <ompl/base/DiscreteMotionValidator.h>
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/objectives/MaximizeMinClearanceObjective.h>
 #include <ompl/base/objectives/MechanicalWorkOptimizationObjective.h>
@@ -16,7 +15,6 @@
 #include <chrono>
 #include <cstdio>
 #include <mutex>
-#include <sstream>
 
 #include "mddual/error.h"
 #include "mddual/planning/planner_factory.h"
@@ -154,48 +152,7 @@ std::string sanitize(const std::string& name) {
 
 }  // namespace
 
-// ---- Checker names ------------------------------------------------------------------
-
-const char* toString(CheckerKind kind) {
-  switch (kind) {
-    case CheckerKind::kMdd: return "mdd";
-    case CheckerKind::kFcl: return "fcl";
-    case CheckerKind::kFclContinuous: return "fcl-continuous";
-  }
-  return "?";
-}
-
-const std::vector<CheckerKind>& allCheckerKinds() {
-  static const std::vector<CheckerKind> kinds{CheckerKind::kMdd, CheckerKind::kFcl, CheckerKind::kFclContinuous};
-  return kinds;
-}
-
-CheckerKind parseCheckerKind(const std::string& name) {
-  for (CheckerKind k : allCheckerKinds()) {
-    if (name == toString(k)) return k;
-  }
-  throw InvalidInputError("unknown checker '" + clipForMessage(name) + "' (known: mdd, fcl, fcl-continuous)");
-}
-
-std::vector<CheckerKind> parseCheckerList(const std::string& list) {
-  std::vector<CheckerKind> kinds;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (item.empty()) throw InvalidInputError("empty checker name in '" + clipForMessage(list) + "'");
-    const CheckerKind k = parseCheckerKind(item);
-    for (CheckerKind seen : kinds) {
-      if (seen == k) {
-        throw InvalidInputError("checker '" + item + "' given twice in '" + clipForMessage(list) + "'");
-      }
-    }
-    kinds.push_back(k);
-  }
-  if (kinds.empty() || (!list.empty() && list.back() == ',')) {
-    throw InvalidInputError("no checker in '" + clipForMessage(list) + "' (known: mdd, fcl, fcl-continuous)");
-  }
-  return kinds;
-}
+// ---- Planner names ------------------------------------------------------------------
 
 std::set<std::string> ourPlannerNames() {
   const std::vector<std::string> names = plannerNames();
@@ -314,9 +271,10 @@ SpaceKind toPlanningKind(scene::SpaceKind kind) {
 
 // ---- ProblemSetup -------------------------------------------------------------------
 
-ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const SetupOptions& options)
+ProblemSetup::ProblemSetup(const Problem& problem, const std::string& checker, const SetupOptions& options)
     : problem_(problem), checker_(checker), timer_(std::make_shared<CheckTimer>()) {
   if (!problem_.scene) throw InvalidInputError("ProblemSetup: the problem has no scene");
+  const RigidChecker& entry = findRigidChecker(checker);
   const scene::ProblemScene& sc = *problem_.scene;
   const scene::ProblemConfig& cfg = problem_.config;
   const std::string where = problem_.cfgName();
@@ -347,38 +305,10 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
         space_->stateSpace(), cells, ob::ProjectionMatrix::Matrix::Identity(dims, dims)));
   }
 
-  // 2. The checkers, wrapped.
-  ob::StateValidityCheckerPtr state_checker;
-  ob::MotionValidatorPtr motion_validator;
-  switch (checker) {
-    case CheckerKind::kMdd: {
-      auto scene = std::make_shared<MddScene>(problem_.robot(), problem_.world(), options.mdd);
-      mdd_state_ = std::make_shared<MddStateValidityChecker>(si, space_, scene);
-      mdd_motion_ = std::make_shared<MddMotionValidator>(si, space_, scene);
-      mdd_state_->setTiming(false);
-      mdd_motion_->setTiming(false);
-      state_checker = mdd_state_;
-      motion_validator = mdd_motion_;
-      break;
-    }
-    case CheckerKind::kFcl:
-    case CheckerKind::kFclContinuous: {
-      auto scene = std::make_shared<FclScene>(problem_.robot(), problem_.world());
-      fcl_state_ = std::make_shared<FclStateValidityChecker>(si, space_, scene);
-      fcl_state_->setTiming(false);
-      state_checker = fcl_state_;
-      if (checker == CheckerKind::kFcl) {
-        motion_validator = std::make_shared<ob::DiscreteMotionValidator>(si);
-      } else {
-        FclCcdOptions ccd;
-        ccd.solver = options.continuous_solver;
-        fcl_motion_ = std::make_shared<FclContinuousMotionValidator>(si, space_, scene, ccd);
-        fcl_motion_->setTiming(false);
-        motion_validator = fcl_motion_;
-      }
-      break;
-    }
-  }
+  // 2. The checker, wrapped.
+  installed_ = entry.install({si, space_, problem_.robot(), problem_.world(), options});
+  const ob::StateValidityCheckerPtr state_checker = si->getStateValidityChecker();
+  const ob::MotionValidatorPtr motion_validator = si->getMotionValidator();
   si->setStateValidityChecker(std::make_shared<TimedStateValidityChecker>(si.get(), state_checker, timer_));
   si->setMotionValidator(std::make_shared<TimedMotionValidator>(si.get(), motion_validator, timer_));
   si->setup();  // the state space's projections (and their parameters) exist from here on
@@ -416,7 +346,7 @@ ProblemSetup::ProblemSetup(const Problem& problem, CheckerKind checker, const Se
   for (const auto& [which, state] : {std::pair<const char*, const ob::State*>{"start", start.get()},
                                      std::pair<const char*, const ob::State*>{"goal", goal.get()}}) {
     if (state_checker->isValid(state)) continue;
-    throw InvalidInputError(where + ": the " + which + " state is in collision for the " + toString(checker) +
+    throw InvalidInputError(where + ": the " + which + " state is in collision for the " + checker +
                             " checker (OMPL's planners would refuse it in every run), though the bench's exact " +
                             "check of each pair of pieces may find it free: the checkers decide contact within " +
                             "a precision relative to the size of the pieces, and pieces of very different sizes " +
@@ -521,7 +451,7 @@ std::string ProblemSetup::plannerWhere(const scene::PlannerSpec& spec) const {
 }
 
 void ProblemSetup::setDiscardedLastValidFraction(double fraction) {
-  if (mdd_motion_) mdd_motion_->setDiscardedLastValidFraction(fraction);
+  if (installed_.set_discarded_last_valid_fraction) installed_.set_discarded_last_valid_fraction(fraction);
 }
 
 CheckStats ProblemSetup::stats() const {
@@ -529,23 +459,15 @@ CheckStats ProblemSetup::stats() const {
   s.state_checks = timer_->state_checks.load(std::memory_order_relaxed);
   s.motion_checks = timer_->motion_checks.load(std::memory_order_relaxed);
   s.seconds = static_cast<double>(timer_->nanoseconds.load(std::memory_order_relaxed)) * 1e-9;
-  if (mdd_state_) s.pair_queries += mdd_state_->counts().pair_queries;
-  if (mdd_motion_) {
-    const CheckerCounts c = mdd_motion_->counts();
-    s.pair_queries += c.pair_queries;
-    s.sub_edges += c.sub_edges;
-  }
-  if (fcl_state_) s.pair_queries += fcl_state_->counts().pair_queries;
-  if (fcl_motion_) s.pair_queries += fcl_motion_->counts().pair_queries;
+  const CheckerCounts own = installed_.counts();
+  s.pair_queries = own.pair_queries;
+  s.sub_edges = own.sub_edges;
   return s;
 }
 
 void ProblemSetup::resetStats() {
   timer_->reset();
-  if (mdd_state_) mdd_state_->resetCounts();
-  if (mdd_motion_) mdd_motion_->resetCounts();
-  if (fcl_state_) fcl_state_->resetCounts();
-  if (fcl_motion_) fcl_motion_->resetCounts();
+  installed_.reset_counts();
 }
 
 }  // namespace mddual::planning

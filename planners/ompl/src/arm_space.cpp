@@ -15,8 +15,6 @@ namespace {
 
 namespace ob = ompl::base;
 
-using detail::kPi;
-
 void requireVariables(const scene::RobotModel& model, const std::vector<int>& group) {
   if (group.empty()) throw InvalidInputError("ArmSpace: the group has no joints");
   std::set<int> seen;

@@ -6,9 +6,10 @@
 
 #include <limits>
 
+#include "mddual/constants.h"  // kPi
+
 namespace mddual::planning::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
-inline constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace mddual::planning::detail

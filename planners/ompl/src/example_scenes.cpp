@@ -12,7 +12,6 @@
 namespace mddual::planning::examples {
 namespace {
 
-using detail::kPi;
 using generators::Rng;
 
 double uniform(Rng& rng, double lo, double hi) {

@@ -296,7 +296,7 @@ int MddScene::worldIndex(int t, int k) const {
   return world_->indexOf(overflow_ids_[static_cast<std::size_t>(k)]);
 }
 
-double MddScene::setMargin(int set) const {
+double MddScene::marginOfSet(int set) const {
   return set == 0 ? 0.0 : kEnlargedReach * delta_ / std::ldexp(1.0, set - 1);
 }
 
@@ -334,7 +334,7 @@ void MddScene::requireSet(int set, const char* who) const {
   }
 }
 
-const scene::Piece& MddScene::setPiece(int set, int i) const {
+const scene::Piece& MddScene::pieceInSet(int set, int i) const {
   if (set != 0) return enlargedPiece(set - 1, i);  // says which level or piece does not exist
   if (i < 0 || static_cast<std::size_t>(i) >= robot_->pieces().size()) {
     throw InvalidInputError("MddScene: robot piece " + std::to_string(i) + " does not exist");
@@ -380,12 +380,12 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
   bool hit = false;
   for (int t = 0; t < 2 && !hit; ++t) {
     if (worldTreeAt(t).empty()) continue;
-    forEachOverlappingPair(worldTreeAt(t), robot_tree_, X_WR, setMargin(set), [&](int k, int i) {
+    forEachOverlappingPair(worldTreeAt(t), robot_tree_, X_WR, marginOfSet(set), [&](int k, int i) {
       const int j = worldIndex(t, k);
       if (j < 0) return true;  // a removed or moved piece's old leaf
       IntersectInput in;
       in.a = &world[static_cast<std::size_t>(j)].polytope;
-      in.b = &setPiece(set, i).polytope;
+      in.b = &pieceInSet(set, i).polytope;
       in.X_WB = X_WR;
       ++queries;
       if (!table) table = warmTable();
@@ -405,7 +405,7 @@ bool MddScene::collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_que
 
 void MddScene::sweptCandidates(int set, int piece, const Eigen::Isometry3d& X_WR, const Eigen::Vector3d& v_W,
                                double max_distance, std::vector<int>* out) const {
-  const scene::Piece& p = setPiece(set, piece);
+  const scene::Piece& p = pieceInSet(set, piece);
   Eigen::AlignedBox3d box = scene::transformedBox(p.box, X_WR);
   const double n = v_W.norm();
   if (n > 0.0 && max_distance > 0.0) {
@@ -448,7 +448,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
   const std::vector<scene::Piece>& world = world_->pieces();
   const std::shared_ptr<WarmTable> table = warmTable();
   CastOptions options;
-  options.margin_b = setMargin(set);
+  options.margin_b = marginOfSet(set);
   options.first_contact = first_contact;
   options.stop_within = stop_within;
   // The cast keeps the smallest distance the leaf returns; the contact of
@@ -459,7 +459,7 @@ SweepResult MddScene::sweepSet(int set, const Eigen::Isometry3d& X_WR, const Eig
     if (j < 0) return kInf;  // a removed or moved piece's old leaf
     DirectionalInput in;
     in.a = &world[static_cast<std::size_t>(j)].polytope;
-    in.b = &setPiece(set, i).polytope;
+    in.b = &pieceInSet(set, i).polytope;
     in.X_WB = X_WR;
     in.s_W = u;
     in.max_distance = limit;

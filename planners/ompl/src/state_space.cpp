@@ -21,7 +21,6 @@ namespace {
 namespace ob = ompl::base;
 
 using detail::kInf;
-using detail::kPi;
 /// OMPL's MAX_QUATERNION_NORM_ERROR (SO3StateSpace.cpp): below 1 - this, the
 /// slerp of SO3StateSpace::interpolate is replaced by a copy of the start.
 constexpr double kOmplQuaternionTolerance = 1e-9;

@@ -18,8 +18,6 @@ namespace {
 using detail::display;
 using detail::quote;
 
-using detail::kPi;
-
 /// A field of a file, for messages and for reading.
 class Field {
  public:

@@ -13,7 +13,6 @@
 namespace mddual::scene {
 namespace {
 
-using detail::kPi;
 /// Fewest sides of a cylinder's prism (coarser prisms look nothing like a
 /// cylinder even when the tolerance allows them).
 constexpr int kMinCylinderSides = 8;

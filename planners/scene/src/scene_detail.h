@@ -9,15 +9,12 @@
 #include <string_view>
 #include <vector>
 
+#include "mddual/constants.h"  // kPi
 #include "mddual/error.h"
 #include "mddual/scene/loaders.h"
 #include "mddual/scene/scene.h"
 
 namespace mddual::scene::detail {
-
-/// One definition for the scene sources (built as unity batches, where two
-/// files' definitions would clash).
-inline constexpr double kPi = 3.14159265358979323846;
 
 /// `s` in lower case (ASCII).
 inline std::string lowerCase(std::string s) {

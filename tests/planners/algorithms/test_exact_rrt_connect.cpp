@@ -550,13 +550,13 @@ TEST(ExactRRTConnect, NegativeOrNanParametersAreRefused) {
     ADD_FAILURE() << "-1 accepted";
   } catch (const InvalidInputError& e) {
     EXPECT_EQ(std::string(e.what()),
-              "ExactRRTConnect: probe_steps must be a finite number of steps >= 0 (0: no probe), got -1");
+              "mdd_rrtconnect: probe_steps must be a finite number of steps >= 0 (0: no probe), got -1");
   }
   try {
     planner.setMinProgress(-0.5);
     ADD_FAILURE() << "-0.5 accepted";
   } catch (const InvalidInputError& e) {
-    EXPECT_EQ(std::string(e.what()), "ExactRRTConnect: min_progress must be a finite number of steps >= 0, got -0.5");
+    EXPECT_EQ(std::string(e.what()), "mdd_rrtconnect: min_progress must be a finite number of steps >= 0, got -0.5");
   }
   EXPECT_DOUBLE_EQ(planner.getRange(), 0.0);  // unchanged by the refused values
   EXPECT_DOUBLE_EQ(planner.getMinProgress(), 1.0);

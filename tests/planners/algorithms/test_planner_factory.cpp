@@ -48,7 +48,7 @@ TEST(PlannerFactory, KnowsOmplAppNamesAndOurs) {
     const ob::PlannerPtr p = makePlanner(name, si);
     ASSERT_NE(p, nullptr) << name;
   }
-  EXPECT_EQ(makePlanner("mdd_rrtconnect", si)->getName(), "ExactRRTConnect");
+  EXPECT_EQ(makePlanner("mdd_rrtconnect", si)->getName(), "mdd_rrtconnect");
 }
 
 TEST(PlannerFactory, DiscardedLastValidFractionIsTheKpieceFamilysMinValidPathFraction) {
@@ -355,7 +355,7 @@ TEST(PlannerFactory, IntegerAndBooleanParametersAreCheckedForTheirType) {
   EXPECT_EQ(refusal("mdd_rrtconnect", "blocked_range", "inf"),
             "planner 'mdd_rrtconnect': parameter 'blocked_range' = 'inf': not a finite number");
   EXPECT_EQ(refusal("mdd_rrtconnect", "blocked_range", "-1"),
-            "planner 'mdd_rrtconnect': parameter 'blocked_range' = '-1': ExactRRTConnect: blocked_range must be a "
+            "planner 'mdd_rrtconnect': parameter 'blocked_range' = '-1': mdd_rrtconnect: blocked_range must be a "
             "finite distance >= 0 (0: OMPL's default range), got -1");
   for (const char* bad : {"abc", "", "-1", "00", "0.0"}) {
     EXPECT_EQ(refusal("mdd_rrtconnect", "rotate_first", bad),

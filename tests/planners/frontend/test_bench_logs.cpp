@@ -59,7 +59,7 @@ std::string omplLog(const fs::path& dir) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
   const Problem problem = loadProblem(testing::writeTinyConfig(dir / "cfg"));
   BenchOptions options;
-  options.checkers = {CheckerKind::kMdd};
+  options.checkers = {"mdd"};
   options.planners = {"rrtconnect"};
   options.runs = 1;
   options.time_limit = 0.05;

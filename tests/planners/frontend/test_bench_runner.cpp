@@ -127,21 +127,21 @@ TEST_F(BenchRunner, WritesOneLogPerCheckerWithVerifiedRuns) {
   int started = 0;
   int finished = 0;
   BenchObserver observer;
-  observer.run_started = [&](CheckerKind, const std::string&, int, int runs, int) {
+  observer.run_started = [&](const std::string&, const std::string&, int, int runs, int) {
     ++started;
     EXPECT_EQ(runs, 2);
   };
-  observer.run_finished = [&](CheckerKind, const std::string&, int, bool, bool, bool) { ++finished; };
+  observer.run_finished = [&](const std::string&, const std::string&, int, bool, bool, bool) { ++finished; };
   const std::vector<BenchLog> logs = runBench(problem_, options, observer);
   ASSERT_EQ(logs.size(), 3u);
   EXPECT_EQ(started, 12);
   EXPECT_EQ(finished, 12);
   for (const BenchLog& l : logs) {
-    EXPECT_EQ(l.file, dir_ / "out" / ("tiny-" + std::string(toString(l.checker)) + ".log"));
+    EXPECT_EQ(l.file, dir_ / "out" / ("tiny-" + l.checker + ".log"));
     const ParsedLog log = parseLog(l.file);
-    EXPECT_EQ(log.experiment, "tiny-" + std::string(toString(l.checker)));
+    EXPECT_EQ(log.experiment, "tiny-" + l.checker);
     EXPECT_EQ(log.parameters.at("config STRING"), "tiny");
-    EXPECT_EQ(log.parameters.at("checker STRING"), toString(l.checker));
+    EXPECT_EQ(log.parameters.at("checker STRING"), l.checker);
     EXPECT_EQ(log.parameters.at("shard STRING"), "0/1");
     EXPECT_EQ(log.runs_per_planner, 2);
     ASSERT_EQ(log.planners.size(), 2u);
@@ -170,7 +170,7 @@ TEST_F(BenchRunner, WritesOneLogPerCheckerWithVerifiedRuns) {
     EXPECT_EQ(l.solved, solved);
     EXPECT_EQ(l.verified, verified);
     EXPECT_EQ(l.invalid, invalid);
-    if (l.checker == CheckerKind::kMdd) {
+    if (l.checker == "mdd") {
       EXPECT_EQ(invalid, 0) << "our checker's solutions are never invalid";
       EXPECT_EQ(verified, 4) << "the tiny problem is easy";
     }
@@ -184,7 +184,7 @@ TEST_F(BenchRunner, ShardsPartitionTheRuns) {
     options.output_dir = dir_ / sub;
     options.runs = 3;
     options.time_limit = 0.1;
-    options.checkers = {CheckerKind::kMdd, CheckerKind::kFcl};
+    options.checkers = {"mdd", "fcl"};
     options.planners = {"mdd_rrtconnect"};
     options.shard = shard;
     std::multiset<Key> out;
@@ -193,7 +193,7 @@ TEST_F(BenchRunner, ShardsPartitionTheRuns) {
       const ParsedLog log = parseLog(l.file);
       EXPECT_EQ(log.parameters.at("shard STRING"), toString(shard));
       for (const auto& [name, runs] : log.planners) {
-        for (const auto& run : runs) out.insert({toString(l.checker), name, run.at("run index INTEGER")});
+        for (const auto& run : runs) out.insert({l.checker, name, run.at("run index INTEGER")});
       }
     }
     return out;

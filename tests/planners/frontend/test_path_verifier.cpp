@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "mddual/constants.h"
 #include "mddual/planning/example_scenes.h"
 #include "mddual/planning/path_verifier.h"
 
@@ -15,7 +16,6 @@ namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
-constexpr double kPi = 3.14159265358979323846;
 
 /// The OMPL layer's thin-wall scene: a wall x in [50, 50.05], a cube robot of
 /// side 0.2, bounds x in [0, 100], y in [-5, 5].

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "mddual/constants.h"
 #include "mddual/planning/arm_scene.h"
 #include "mddual/scene/loaders.h"
 #include "test_support.h"
@@ -31,7 +32,7 @@ inline std::shared_ptr<const scene::World> armWorld() {
   Eigen::Isometry3d bar = at(-0.3, 0.0, 0.9);
   bar.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
   pieces.push_back(
-      scene::cylinderPiece(0.02, 1.2, bar * Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()), 1e-3, "bar"));
+      scene::cylinderPiece(0.02, 1.2, bar * Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitX()), 1e-3, "bar"));
   pieces.push_back(scene::boxPiece(Eigen::Vector3d(0.05, 0.05, 1.0), at(-0.35, -0.4, 0.5), "post"));
   return std::make_shared<const scene::World>(std::move(pieces), "arm world");
 }

@@ -21,6 +21,7 @@
 #include <functional>
 
 #include "arm_fixture.h"
+#include "mddual/constants.h"
 #include "mddual/planning/arm_checkers.h"
 #include "mddual/planning/arm_problem.h"
 #include "mddual/scene/srdf.h"
@@ -98,7 +99,7 @@ TEST(ArmSpace, EdgesFollowOmplsInterpolationThroughContinuousJoints) {
   ASSERT_NE(dynamic_cast<ob::CompoundStateSpace*>(space->stateSpace().get()), nullptr);
   ob::ScopedState<> s1(space->stateSpace()), s2(space->stateSpace()), mid(space->stateSpace());
   Rng rng(testing::seed());
-  std::uniform_real_distribution<double> angle(-M_PI, M_PI), unit(0.0, 1.0);
+  std::uniform_real_distribution<double> angle(-kPi, kPi), unit(0.0, 1.0);
   int wrapped = 0;
   for (int i = 0; i < 500; ++i) {
     const std::vector<double> a = {unit(rng) * 2 - 1, angle(rng)}, b = {unit(rng) * 2 - 1, angle(rng)};
@@ -106,12 +107,12 @@ TEST(ArmSpace, EdgesFollowOmplsInterpolationThroughContinuousJoints) {
     space->setState(s2.get(), b.data());
     std::vector<double> q0(2), q1(2);
     space->edge(s1.get(), s2.get(), q0.data(), q1.data());
-    wrapped += std::abs(b[1] - a[1]) > M_PI ? 1 : 0;
+    wrapped += std::abs(b[1] - a[1]) > kPi ? 1 : 0;
     const double t = unit(rng);
     space->stateSpace()->interpolate(s1.get(), s2.get(), t, mid.get());
     const std::vector<double> q = space->configuration(mid.get());
     EXPECT_NEAR(q[0], q0[0] + t * (q1[0] - q0[0]), 1e-12);
-    EXPECT_NEAR(std::remainder(q[1] - (q0[1] + t * (q1[1] - q0[1])), 2 * M_PI), 0.0, 1e-12);
+    EXPECT_NEAR(std::remainder(q[1] - (q0[1] + t * (q1[1] - q0[1])), 2 * kPi), 0.0, 1e-12);
   }
   EXPECT_GT(wrapped, 100) << "too few edges the short way round across +-pi";
 }

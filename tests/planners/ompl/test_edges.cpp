@@ -19,7 +19,6 @@ namespace {
 
 using testing::kInf;
 using testing::kNaN;
-using testing::kPi;
 /// Round-off allowed on exact fractions and poses (relative to scene sizes of ~10).
 constexpr double kExactTol = 1e-9;
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/planning/clearance.h"
@@ -253,7 +254,7 @@ TEST(Errors, RotationsThatAreNoStateAnswerAtOnce) {
     if (kind == SpaceKind::kSE3) {
       expectError([&] { fx.space->motion(s1.get(), s2.get()); }, "motion: s2's quaternion is zero or not finite");
     } else {
-      EXPECT_LE(fx.space->motion(s1.get(), s2.get()).angle, M_PI);
+      EXPECT_LE(fx.space->motion(s1.get(), s2.get()).angle, kPi);
     }
     // An infinite position: both overloads say invalid (the one with
     // lastValid threw "positions must be finite").
@@ -289,7 +290,7 @@ TEST(Errors, MisusedApiCallsAreNamed) {
   const MddScene& mdd = *fx.mdd;
   const EdgeMotion motion = fx.space->motion(s.get(), s.get());
   expectError([&] { mdd.checkEdge(motion, static_cast<EdgeQuery>(9)); }, "unknown query 9");
-  expectError([&] { mdd.setPiece(0, -1); }, "robot piece -1 does not exist");
+  expectError([&] { mdd.pieceInSet(0, -1); }, "robot piece -1 does not exist");
   expectError([&] { mdd.enlargedPiece(99, 0); }, "enlargement level 99 does not exist");
   expectError([&] { mdd.sweepSet(9, Eigen::Isometry3d::Identity(), Eigen::Vector3d::UnitX(), 1.0, true); },
               "piece set 9 does not exist");

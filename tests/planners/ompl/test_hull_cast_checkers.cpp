@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
 #include "mddual/planning/example_scenes.h"
@@ -100,17 +101,17 @@ TEST(HullCast, LastValidIsTheStartOnACollision) {
 // = 1.45 along the bisector, so the cast calls the edge free; the link passes
 // through the box at 45 degrees.
 TEST(HullCast, MissesALinkTurningPastAnObstacleInsideItsArc) {
-  const Eigen::Vector3d bisector(std::cos(M_PI / 4), std::sin(M_PI / 4), 0.0);
+  const Eigen::Vector3d bisector(std::cos(kPi / 4), std::sin(kPi / 4), 0.0);
   std::vector<Eigen::Vector3d> obstacle;
   for (const Eigen::Vector3d& p : generators::box({0.1, 0.1, 0.5})) {
-    obstacle.push_back(Eigen::AngleAxisd(M_PI / 4, Eigen::Vector3d::UnitZ()) * p + 1.8 * bisector);
+    obstacle.push_back(Eigen::AngleAxisd(kPi / 4, Eigen::Vector3d::UnitZ()) * p + 1.8 * bisector);
   }
   Validators s = makeSetup(SpaceKind::kSE2, {boxPiece({1.0, 0.05, 0.25}, {1.0, 0, 0})},
                            {examples::convexPiece(obstacle, "obstacle")});
   ob::ScopedState<> a(s.space->stateSpace()), b(s.space->stateSpace()), mid(s.space->stateSpace());
   s.space->setPose(at({0, 0, 0}, 0.0), a.get());
-  s.space->setPose(at({0, 0, 0}, M_PI / 2), b.get());
-  s.space->setPose(at({0, 0, 0}, M_PI / 4), mid.get());
+  s.space->setPose(at({0, 0, 0}, kPi / 2), b.get());
+  s.space->setPose(at({0, 0, 0}, kPi / 4), mid.get());
   ASSERT_TRUE(s.si->isValid(a.get()));
   ASSERT_TRUE(s.si->isValid(b.get()));
   ASSERT_FALSE(s.si->isValid(mid.get()));  // a real collision on the edge

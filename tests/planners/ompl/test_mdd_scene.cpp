@@ -15,6 +15,7 @@
 #include <memory>
 #include <vector>
 
+#include "mddual/constants.h"
 #include "mddual/generators.h"
 #include "mddual/planning/scene_distance.h"
 #include "test_support.h"
@@ -23,7 +24,6 @@ namespace mddual::planning {
 namespace {
 
 using testing::kInf;
-using testing::kPi;
 
 /// The box of a polytope's vertices posed at X, grown by a margin against
 /// round-off (boxes of touching pieces must meet).
@@ -59,7 +59,7 @@ struct WorldBoxes {
 bool pairLoopCollides(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR) {
   const WorldBoxes world(mdd);
   for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
-    const scene::Piece& piece = mdd.setPiece(set, i);
+    const scene::Piece& piece = mdd.pieceInSet(set, i);
     for (int j : world.meeting(posedBox(piece.polytope, X_WR))) {
       IntersectInput in;
       in.a = &mdd.world().pieces()[static_cast<std::size_t>(j)].polytope;
@@ -79,7 +79,7 @@ double pairLoopSweep(const MddScene& mdd, int set, const Eigen::Isometry3d& X_WR
   const WorldBoxes world(mdd);
   double best = kInf;
   for (int i = 0; i < static_cast<int>(mdd.robot().pieces().size()); ++i) {
-    const scene::Piece& piece = mdd.setPiece(set, i);
+    const scene::Piece& piece = mdd.pieceInSet(set, i);
     Eigen::Isometry3d X_end = X_WR;
     X_end.pretranslate(max_distance * v_W.normalized());
     Eigen::AlignedBox3d swept = posedBox(piece.polytope, X_WR);
@@ -713,7 +713,7 @@ TEST(EnlargePiece, AManyCorneredFlatPieceIsEnlargedAsAPrismThatHoldsItGrownByDel
     for (int i = 0; i < n; ++i) {
       // An ellipse squeezed to 1:20 (corners turning by about 150 degrees
       // at its ends for n = 17: three tangent segments there).
-      const double a = 2.0 * M_PI * i / n;
+      const double a = 2.0 * kPi * i / n;
       points.push_back(q * Eigen::Vector3d(0.4 * std::cos(a), 0.02 * std::sin(a), 0.0) +
                        Eigen::Vector3d(0.1, 0.2, 0.3));
     }

@@ -20,7 +20,6 @@ namespace mddual::planning {
 namespace {
 
 using testing::kInf;
-using testing::kPi;
 
 /// mdd_scene_rotation.cpp's kGrowthSafety and kSlerpRoundoffRel (file-local
 /// there): the growth's safety factor 1 + this, and the round-off part per

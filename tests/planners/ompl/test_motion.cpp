@@ -22,7 +22,6 @@ namespace {
 namespace ob = ompl::base;
 using testing::EdgeTally;
 using testing::Fixture;
-using testing::kPi;
 
 class MotionSoundness : public ::testing::TestWithParam<int> {};
 

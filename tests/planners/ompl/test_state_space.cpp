@@ -23,7 +23,6 @@ namespace mddual::planning {
 namespace {
 
 namespace ob = ompl::base;
-using testing::kPi;
 using testing::Rng;
 
 const Eigen::AlignedBox3d kBounds(Eigen::Vector3d(-5, -4, -3), Eigen::Vector3d(5, 4, 3));

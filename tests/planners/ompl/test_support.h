@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "mddual/constants.h"
 #include "mddual/planning/example_scenes.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/mdd_checkers.h"
@@ -32,7 +33,6 @@ using Rng = std::mt19937_64;
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-inline constexpr double kPi = 3.14159265358979323846;
 
 /// MDDUAL_PLANNING_SCALE (default 1).
 int scale();

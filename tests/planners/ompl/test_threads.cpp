@@ -28,7 +28,6 @@ namespace {
 
 namespace ob = ompl::base;
 using testing::Fixture;
-using testing::kPi;
 constexpr int kThreads = 8;
 
 struct Answers {

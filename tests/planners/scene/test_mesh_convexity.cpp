@@ -11,6 +11,7 @@
 #include <random>
 #include <sstream>
 
+#include "mddual/constants.h"
 #include "mddual/generators.h"
 #include "mddual/scene/loaders.h"
 #include "scene_detail.h"
@@ -258,7 +259,7 @@ std::string prismRock(std::mt19937* rng, int sides, double height, double noise,
                       std::vector<std::array<int, 3>>* faces) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<double> angles;
-  for (int i = 0; i < sides; ++i) angles.push_back(2.0 * M_PI * (i + 0.4 * u(*rng)) / sides);
+  for (int i = 0; i < sides; ++i) angles.push_back(2.0 * kPi * (i + 0.4 * u(*rng)) / sides);
   vertices->clear();
   for (const double z : {0.0, height}) {
     for (const double a : angles) {

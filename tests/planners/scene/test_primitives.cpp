@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 
+#include "mddual/constants.h"
 #include "mddual/generators.h"
 #include "mddual/scene/loaders.h"
 #include "scene_test_util.h"
@@ -15,8 +16,6 @@ namespace mddual::scene {
 namespace {
 
 using testing::expectSceneError;
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// Largest signed distance of p outside the polytope's face planes (<= 0 inside).
 double outside(const ConvexPolytope& P, const Eigen::Vector3d& p) {

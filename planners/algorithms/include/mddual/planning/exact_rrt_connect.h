@@ -1,4 +1,5 @@
-// ExactRRTConnect: RRT-Connect (Kuffner and LaValle, 2000) whose EXTEND step
+// ExactRRTConnect, the planner mdd_rrtconnect (its one name, kExactRRTConnectName):
+// RRT-Connect (Kuffner and LaValle, 2000) whose EXTEND step
 // first tries the whole straight edge to the target and, when that edge is
 // blocked, falls back to RRT-Connect's step toward it (blocked_range long),
 // kept up to its first contact (the motion validator's lastValid) instead
@@ -104,6 +105,10 @@
 #include <ompl/datastructures/NearestNeighbors.h>
 
 namespace mddual::planning {
+
+/// The planner's one name: in a cfg's [planner] section, --planners,
+/// makePlanner, the benchmark logs and Planner::getName().
+inline constexpr const char* kExactRRTConnectName = "mdd_rrtconnect";
 
 OMPL_CLASS_FORWARD(ExactRRTConnect);
 

@@ -3,7 +3,7 @@
 // planner in ompl::tools::Benchmark, one OMPL log per (problem, checker),
 // every solution verified.
 //
-// Checkers (ArmCheckerKind):
+// Checkers: the entries of armCheckers() (checker_registry.h):
 //   mdd       ArmStateValidityChecker + ArmMotionValidator (exact states,
 //             certified edges);
 //   fcl       FclArmStateValidityChecker + OMPL's DiscreteMotionValidator at
@@ -40,15 +40,9 @@
 
 #include "mddual/planning/arm_problem.h"
 #include "mddual/planning/bench_runner.h"
+#include "mddual/planning/checker_registry.h"
 
 namespace mddual::planning {
-
-enum class ArmCheckerKind : std::uint8_t { kMdd, kFcl, kFclFine };
-/// "mdd", "fcl", "fcl-fine".
-const char* toString(ArmCheckerKind kind);
-/// A comma-separated list of arm checker names; throws InvalidInputError for
-/// an unknown or repeated name or an empty list.
-std::vector<ArmCheckerKind> parseArmCheckerList(const std::string& list);
 
 /// The OMPL planner name of a MotionBenchMaker (MoveIt) planner_id:
 /// "RRTConnectkConfigDefault" -> "rrtconnect", "BKPIECEGood" -> "bkpiece";
@@ -57,7 +51,8 @@ std::string plannerFromPlannerId(const std::string& planner_id);
 
 /// Options of runArmBench.
 struct ArmBenchOptions {
-  std::vector<ArmCheckerKind> checkers = {ArmCheckerKind::kMdd, ArmCheckerKind::kFcl, ArmCheckerKind::kFclFine};
+  /// Names of armCheckers() entries; by default all of them, in the table's order.
+  std::vector<std::string> checkers = armCheckerNames();
   /// Planner names or planner_ids; empty: each request's planner_id.
   std::vector<std::string> planners;
   int runs = 10;
@@ -78,14 +73,14 @@ struct ArmBenchOptions {
 /// Progress callbacks (any may be empty).
 struct ArmBenchObserver {
   std::function<void(const std::string& problem, int index, int count)> problem_started;
-  std::function<void(ArmCheckerKind checker, const std::string& planner, bool solved, bool verified, bool invalid)>
+  std::function<void(const std::string& checker, const std::string& planner, bool solved, bool verified, bool invalid)>
       run_finished;
 };
 
 /// What runArmBench wrote for one (problem, checker).
 struct ArmBenchLog {
   std::string problem;
-  ArmCheckerKind checker = ArmCheckerKind::kMdd;
+  std::string checker;
   std::filesystem::path file;
   int solved = 0;    ///< exact solutions
   int verified = 0;  ///< of them, verified collision-free

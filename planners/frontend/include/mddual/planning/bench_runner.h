@@ -100,7 +100,8 @@ void checkShardSets(const std::vector<std::filesystem::path>& logs);
 
 /// Options of runBench; unset optionals take the cfg's values.
 struct BenchOptions {
-  std::vector<CheckerKind> checkers = allCheckerKinds();
+  /// Names of rigidCheckers() entries; by default all of them, in the table's order.
+  std::vector<std::string> checkers = rigidCheckerNames();
   /// Planner names as in the cfg ([planner] keys); empty: all of the cfg's.
   std::vector<std::string> planners;
   std::optional<int> runs;
@@ -117,19 +118,22 @@ struct BenchOptions {
 /// runBench.
 struct BenchObserver {
   /// A checker's benchmark starts (index among the checkers run).
-  std::function<void(CheckerKind checker, int index, int count)> checker_started;
+  std::function<void(const std::string& checker, int index, int count)> checker_started;
   /// A planner's runs start: `runs` runs of this shard.
-  std::function<void(CheckerKind checker, const std::string& planner, int index, int count, int runs)> planner_started;
+  std::function<void(const std::string& checker, const std::string& planner, int index, int count, int runs)>
+      planner_started;
   /// Run k (0-based, of this shard's `runs`) starts; run_index is its r.
-  std::function<void(CheckerKind checker, const std::string& planner, int k, int runs, int run_index)> run_started;
+  std::function<void(const std::string& checker, const std::string& planner, int k, int runs, int run_index)>
+      run_started;
   /// A run ended: solved exactly, verified, invalid.
-  std::function<void(CheckerKind checker, const std::string& planner, int k, bool solved, bool verified, bool invalid)>
+  std::function<void(const std::string& checker, const std::string& planner, int k, bool solved, bool verified,
+                     bool invalid)>
       run_finished;
 };
 
 /// What runBench wrote.
 struct BenchLog {
-  CheckerKind checker = CheckerKind::kMdd;
+  std::string checker;         ///< its name
   std::filesystem::path file;  ///< the OMPL benchmark log
   int planners = 0;
   int runs_per_planner = 0;
@@ -139,7 +143,7 @@ struct BenchLog {
 };
 
 /// "<config>-<checker>.log", or "<config>-<checker>.shard<I>of<N>.log" for a shard.
-std::string logFileName(const std::string& config, CheckerKind checker, const BenchShard& shard);
+std::string logFileName(const std::string& config, const std::string& checker, const BenchShard& shard);
 
 /// The planners `names` selects (all the cfg's when empty): see
 /// selectPlannerSpecs (a name the cfg does not list runs with OMPL's

@@ -3,7 +3,7 @@
 // checkers, ready for planning or for ompl::tools::Benchmark.
 //
 //   auto problem = mp::loadProblem("configs/thin_walls/thin_walls.cfg");
-//   mp::ProblemSetup setup(problem, mp::CheckerKind::kMdd);
+//   mp::ProblemSetup setup(problem, "mdd");
 //   auto planner = setup.makePlanner(problem.config.planners[0]);
 //   setup.applyPlannerContext(problem.config.planners[0]);
 //   setup.simpleSetup().setPlanner(planner);
@@ -18,15 +18,10 @@
 //      each set-up: projection-based planners such as KPIECE would depend on
 //      it, differently for each checker; for R^2 it trips an Eigen assertion
 //      in OMPL 1.5.2);
-//   2. the checkers (CheckerKind):
-//        mdd             MddStateValidityChecker + MddMotionValidator (exact
-//                        translation edges, sound rotating edges);
-//        fcl             FclStateValidityChecker + OMPL's DiscreteMotionValidator
-//                        at the space's resolution (what OMPL.app users run);
-//        fcl-continuous  FclStateValidityChecker + FclContinuousMotionValidator
-//                        with FCL's conservative advancement (libccd) by default
-//                        (SetupOptions::continuous_solver selects the naive one);
-//      each wrapped so that the time spent checking is measured once (a motion
+//   2. the checker: the entry of rigidCheckers() (checker_registry.h) that
+//      the set-up is named by (mdd, fcl, fcl-continuous) installs its state
+//      validity checker and motion validator, each then wrapped so that the
+//      time spent checking is measured once (a motion
 //      validator's own state checks are nested in its time, not added again)
 //      and the checks are counted (stats());
 //   3. the cfg's space parameters ([problem] keys that are not OMPL.app's own,
@@ -63,25 +58,11 @@
 #include <vector>
 
 #include "mddual/error.h"
-#include "mddual/planning/fcl_checkers.h"
-#include "mddual/planning/mdd_checkers.h"
+#include "mddual/planning/checker_registry.h"
 #include "mddual/planning/state_space.h"
 #include "mddual/scene/problem_config.h"
 
 namespace mddual::planning {
-
-/// The collision checkers a problem can be set up with (see the file comment).
-enum class CheckerKind : std::uint8_t { kMdd, kFcl, kFclContinuous };
-
-/// "mdd", "fcl", "fcl-continuous".
-const char* toString(CheckerKind kind);
-/// The checker called `name`; throws InvalidInputError naming it and the known names.
-CheckerKind parseCheckerKind(const std::string& name);
-/// A comma-separated list of checker names ("mdd,fcl"), in order; throws
-/// InvalidInputError for an unknown or repeated name or an empty list.
-std::vector<CheckerKind> parseCheckerList(const std::string& list);
-/// mdd, fcl, fcl-continuous.
-const std::vector<CheckerKind>& allCheckerKinds();
 
 /// The planner names a cfg may use: OMPL.app's and ours (mdd_rrtconnect).
 std::set<std::string> ourPlannerNames();
@@ -127,13 +108,7 @@ void checkStartAndGoal(const Problem& problem);
 /// The planning space kind of a cfg's space kind.
 SpaceKind toPlanningKind(scene::SpaceKind kind);
 
-/// Options of a ProblemSetup.
-struct SetupOptions {
-  /// fcl-continuous: FCL's solver (FclCcdOptions; the other settings FCL's defaults).
-  FclCcdSolver continuous_solver = FclCcdSolver::kConservativeAdvancement;
-  /// mdd: the MddScene's options (rotation tolerance, refinement levels).
-  MddSceneOptions mdd;
-};
+// SetupOptions (the checkers' options): checker_registry.h.
 
 /// What the checkers of a ProblemSetup did since the last resetStats().
 struct CheckStats {
@@ -155,21 +130,23 @@ class ProblemSetup {
  public:
   /// Throws InvalidInputError for a space parameter that OMPL's space
   /// information does not have or rejects, a start or goal the checker finds
-  /// in collision, or a bad objective.
-  ProblemSetup(const Problem& problem, CheckerKind checker, const SetupOptions& options = SetupOptions());
+  /// in collision, or a bad objective, and for a checker name that
+  /// rigidCheckers() does not have (findRigidChecker's message).
+  ProblemSetup(const Problem& problem, const std::string& checker, const SetupOptions& options = SetupOptions());
   ~ProblemSetup();
   ProblemSetup(const ProblemSetup&) = delete;
   ProblemSetup& operator=(const ProblemSetup&) = delete;
 
   const Problem& problem() const { return problem_; }
-  CheckerKind checker() const { return checker_; }
+  /// The checker's name (an entry of rigidCheckers()).
+  const std::string& checker() const { return checker_; }
   ompl::geometric::SimpleSetup& simpleSetup() { return *ss_; }
   const ompl::geometric::SimpleSetup& simpleSetup() const { return *ss_; }
   const ompl::base::SpaceInformationPtr& spaceInformation() const { return ss_->getSpaceInformation(); }
   const PlanningSpacePtr& planningSpace() const { return space_; }
-  /// The MDD checkers' scene (checker kMdd), else null: e.g. to build its
+  /// The MDD checkers' scene (checker mdd), else null: e.g. to build its
   /// enlarged robot pieces before timing (MddScene::enlargedPiece).
-  const MddScene* mddScene() const { return mdd_motion_ ? &mdd_motion_->scene() : nullptr; }
+  const MddScene* mddScene() const { return installed_.mdd_scene.get(); }
 
   /// The planner of a cfg's [planner] entry: makePlanner(spec.name, si,
   /// spec.params), named spec.name unless its params set "name". Throws
@@ -185,7 +162,7 @@ class ProblemSetup {
   void applyPlannerContext(const scene::PlannerSpec& spec);
 
   /// The MDD motion validator's MddMotionValidator::setDiscardedLastValidFraction
-  /// (checker kMdd; nothing for the others): the benchmark sets it per planner
+  /// (checker mdd; nothing for checkers without the setting): the benchmark sets it per planner
   /// to discardedLastValidFraction(planner). Throws as that method does.
   void setDiscardedLastValidFraction(double fraction);
 
@@ -198,15 +175,12 @@ class ProblemSetup {
   void setSampler(const std::string& name, const std::string& where);
 
   Problem problem_;
-  CheckerKind checker_;
+  std::string checker_;
   PlanningSpacePtr space_;
   std::shared_ptr<ompl::geometric::SimpleSetup> ss_;
   std::shared_ptr<CheckTimer> timer_;
-  // The checkers inside the wrappers (null when not of that kind).
-  std::shared_ptr<MddStateValidityChecker> mdd_state_;
-  std::shared_ptr<MddMotionValidator> mdd_motion_;
-  std::shared_ptr<FclStateValidityChecker> fcl_state_;
-  std::shared_ptr<FclContinuousMotionValidator> fcl_motion_;
+  /// What the checker's install function returned (its counts, its options).
+  InstalledChecker installed_;
   /// Parameter values after the space parameters, for the keys any planner's
   /// context sets (restored before each context).
   std::map<std::string, std::string> baseline_;

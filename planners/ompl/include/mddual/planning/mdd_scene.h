@@ -254,7 +254,7 @@ class MddScene {
   // ---- Building blocks on a chosen piece set (0: the robot's pieces; k >= 1:
   // the pieces enlarged at level k - 1); for the clearance queries and tests.
   /// Piece i of set `set` (every set has robot().pieces().size() pieces).
-  const scene::Piece& setPiece(int set, int i) const;
+  const scene::Piece& pieceInSet(int set, int i) const;
   bool collidesSet(int set, const Eigen::Isometry3d& X_WR, int* pair_queries, PieceContact* which) const;
   /// stop_within (>= 0; first_contact only): castFirst's CastOptions::stop_within,
   /// SweepResult::lower_bound its CastHit::lower_bound.
@@ -299,7 +299,7 @@ class MddScene {
   /// (0 to refinementLevels() + 1).
   void requireSet(int set, const char* who) const;
   /// Margin that grows the robot's node volumes to hold piece set `set`.
-  double setMargin(int set) const;
+  double marginOfSet(int set) const;
   std::shared_ptr<WarmTable> warmTable() const;
   /// The warm start of (robot piece, world piece id) of set `set`.
   static WarmStart* warmIn(WarmTable& table, int set, int robot_piece, int world_id);

@@ -229,6 +229,22 @@ TEST(Query, CoplanarAndParallelTriangles) {
   EXPECT_TRUE(in_plane.contact.point_W.isApprox(Eigen::Vector3d(1, 0, 0), kTol));
   EXPECT_TRUE(in_plane.stats.planar);
   EXPECT_NEAR(toiOf(tri, at(0, 0, 0), tri, at(2, 0, 0), {-1, 0, 0}).toi, 1.0, kTol);
+  // Same plane, B's corner on A's (or within the touch tolerance of it): in
+  // contact from the start, whichever way B moves, not a hit at t = 0 (the
+  // planar path's in-contact test). A micrometre apart: a hit moving in,
+  // never moving away.
+  for (const double gap : {0.0, 1e-13}) {
+    for (const double way : {-1.0, 1.0}) {
+      const ToiResult in = toiOf(tri, at(0, 0, 0), tri, at(1 + gap, 0, 0), {way, 0, 0});
+      EXPECT_EQ(in.status, ToiStatus::kInContact) << gap << " " << way;
+      EXPECT_EQ(in.toi, 0.0) << gap;
+      EXPECT_TRUE(in.stats.planar) << gap;
+    }
+  }
+  const ToiResult micro = toiOf(tri, at(0, 0, 0), tri, at(1 + 1e-6, 0, 0), {-1, 0, 0});
+  EXPECT_EQ(micro.status, ToiStatus::kHit);
+  EXPECT_NEAR(micro.toi, 1e-6, 1e-12);
+  EXPECT_EQ(toiOf(tri, at(0, 0, 0), tri, at(1 + 1e-6, 0, 0), {1, 0, 0}).status, ToiStatus::kNever);
   // Overlapping in one plane: touching (flat sets have no interior).
   EXPECT_EQ(mddOf(tri, at(0, 0, 0), tri, at(0.2, 0.2, 0), {1, 0, 0}).status, ContactStatus::kTouching);
   EXPECT_EQ(intersect(IntersectInput{&tri, at(0, 0, 0), &tri, at(0.2, 0.2, 0)}).status, IntersectStatus::kTouching);

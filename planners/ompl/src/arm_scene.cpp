@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <unordered_map>
 
 #include "constants.h"
 #include "mddual/distance.h"
@@ -59,8 +61,12 @@ struct ArmScene::EdgeWork {
   std::size_t next = 1;
   /// The current probe (poseAt()).
   const Probe* at = nullptr;
-  /// pairWindow's scratch.
-  std::vector<double> suffix_a, suffix_b;
+  /// pairWindow's scratch per side, and GJK's warm starts per (pair, leaf, leaf).
+  struct SideScratch {
+    std::vector<double> speed, later, rates;
+  };
+  SideScratch sides[2];
+  std::unordered_map<std::uint64_t, DistanceWarmStart> warm;
   std::vector<std::pair<int, int>> stack;
 
   /// Makes `at` the robot at time t, computed or kept from before.
@@ -100,6 +106,7 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
                             " links, the robot " + std::to_string(model_->numLinks()));
   }
   if (!X_WB_.matrix().allFinite()) throw InvalidInputError("ArmScene: the base pose X_WB is not finite");
+  base_is_identity_ = X_WB_.matrix().isIdentity(0.0);
   if (!(options_.contact_distance > 0.0) || !std::isfinite(options_.contact_distance)) {
     throw InvalidInputError("ArmScene: contact_distance must be a finite number > 0");
   }
@@ -173,6 +180,7 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
 
 void ArmScene::linkPoses(const double* q, std::vector<Eigen::Isometry3d>* X_WL) const {
   model_->linkPoses(q, X_WL);
+  if (base_is_identity_) return;
   for (Eigen::Isometry3d& X : *X_WL) X = X_WB_ * X;
 }
 
@@ -294,38 +302,52 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
     Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d X_SW = Eigen::Isometry3d::Identity();
     const std::vector<Mover>* movers = nullptr;
-    const std::vector<double>* suffix = nullptr;  ///< suffix[i]: bound of the motion of movers i, i+1, ...
+    /// Per mover i: its speed |m dq|, and the bound of the motion of movers
+    /// i+1, i+2, ... (the scratch of EdgeWork::sides).
+    const EdgeWork::SideScratch* scratch = nullptr;
+    /// Per node of the side's tree: its ball's rate, once computed (< 0: not yet).
+    std::vector<double>* rates = nullptr;
   };
-  const auto make = [&](int link, const std::vector<Mover>* movers, std::vector<double>* suffix) {
+  const auto make = [&](int link, const std::vector<Mover>* movers, EdgeWork::SideScratch* scratch) {
     Moving m;
     m.side = side(link, coarse);
     if (link < 0) return m;
     m.X_WS = w.at->X_WL[static_cast<std::size_t>(link)];
     m.X_SW = m.X_WS.inverse();
     m.movers = movers;
-    m.suffix = suffix;
-    suffix->assign(movers->size() + 1, 0.0);
-    for (std::size_t i = movers->size(); i-- > 0;) {
+    m.scratch = scratch;
+    const std::size_t n = movers->size();
+    scratch->speed.resize(n);
+    scratch->later.assign(n + 1, 0.0);
+    for (std::size_t i = n; i-- > 0;) {
       const Mover& mv = (*movers)[i];
-      (*suffix)[i] =
-          (*suffix)[i + 1] + std::abs(w.dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier * mv.reach;
+      scratch->speed[i] = std::abs(w.dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier;
+      scratch->later[i] = scratch->later[i + 1] + scratch->speed[i] * mv.reach;
     }
     return m;
   };
-  const Moving A = p.other < 0 ? make(-1, nullptr, nullptr) : make(p.link, &p.link_movers, &w.suffix_a);
-  const Moving B =
-      p.other < 0 ? make(p.link, &p.link_movers, &w.suffix_b) : make(p.other, &p.other_movers, &w.suffix_b);
+  Moving A = p.other < 0 ? make(-1, nullptr, nullptr) : make(p.link, &p.link_movers, &w.sides[0]);
+  Moving B = p.other < 0 ? make(p.link, &p.link_movers, &w.sides[1]) : make(p.other, &p.other_movers, &w.sides[1]);
+  for (Moving* m : {&A, &B}) {
+    std::vector<double>& rates = w.sides[m == &A ? 0 : 1].rates;
+    rates.assign(static_cast<std::size_t>(m->side.tree->numNodes()), -1.0);
+    m->rates = &rates;
+  }
+  // No node pair moves faster than the pair's bound R.
+  const double rate_max = pairRate(static_cast<int>(&p - pairs_.data()), w.dq.data()) * (1.0 + kRateSlackRel);
   // How fast (world units per unit t) a point of a ball (centre c_W, radius
   // r) of a side can move while |t - probe| <= tau: per joint, its speed
   // times the ball's distance from the joint's axis now, plus how far the
   // later joints can carry the ball meanwhile, and never more than the
   // joint's reach.
-  const auto rate = [&](const Moving& m, const Eigen::Vector3d& c_W, double r) {
+  const auto rate = [&](const Moving& m, int node, const Eigen::Vector3d& c_W, double r) {
     if (m.movers == nullptr) return 0.0;
+    double& cached = (*m.rates)[static_cast<std::size_t>(node)];
+    if (cached >= 0.0) return cached;
     double rho = 0.0;
     for (std::size_t i = 0; i < m.movers->size(); ++i) {
       const Mover& mv = (*m.movers)[i];
-      const double speed = std::abs(w.dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier;
+      const double speed = m.scratch->speed[i];
       if (speed == 0.0) continue;
       if (mv.prismatic) {
         rho += speed;
@@ -333,10 +355,11 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
       }
       const std::size_t j = static_cast<std::size_t>(mv.joint);
       const Eigen::Vector3d v = c_W - w.at->o_W[j];
-      const double from_axis = (v - v.dot(w.at->u_W[j]) * w.at->u_W[j]).norm() + r + tau * (*m.suffix)[i + 1];
+      const double from_axis = (v - v.dot(w.at->u_W[j]) * w.at->u_W[j]).norm() + r + tau * m.scratch->later[i + 1];
       rho += speed * std::min(mv.reach, from_axis);
     }
-    return rho * (1.0 + kRateSlackRel);
+    cached = rho * (1.0 + kRateSlackRel);
+    return cached;
   };
   const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
   double best = tau;
@@ -350,7 +373,6 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
     const Bvh::Node& nb = B.side.tree->node(eb);
     const Eigen::Vector3d ca_W = A.X_WS * na.centre;
     const Eigen::Vector3d cb_W = B.X_WS * nb.centre;
-    const double rho = rate(A, ca_W, na.radius) + rate(B, cb_W, nb.radius);
     const double slack = kBvhSlackRel * (na.scale + nb.scale + scale_);
     // The larger of the balls' gap and each ball's gap to the other node's
     // box (in that node's frame): boxes are far tighter than balls on flat
@@ -361,14 +383,20 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
     const double bound = std::max({(ca_W - cb_W).norm() - na.radius - nb.radius,
                                    ballToBox(na, A.X_SW * cb_W, nb.radius), ballToBox(nb, B.X_SW * ca_W, na.radius)}) -
                          slack;
-    if (bound - cd >= best * rho) continue;  // keeps cd for the window found so far
+    if (bound - cd >= best * rate_max) continue;  // keeps cd for the window found so far
+    const double rho = rate(A, ea, ca_W, na.radius) + rate(B, eb, cb_W, nb.radius);
+    if (bound - cd >= best * rho) continue;
     if (na.isLeaf() && nb.isLeaf()) {
       DistanceInput in;
       in.a = (*A.side.polytopes)[static_cast<std::size_t>(A.side.tree->leafPiece(ea))];
       in.X_WA = A.X_WS;
       in.b = (*B.side.polytopes)[static_cast<std::size_t>(B.side.tree->leafPiece(eb))];
       in.X_WB = B.X_WS;
-      const double d = separationLowerBound(in, nullptr, cd + best * rho);
+      // GJK starts from where the same leaf pair's last search ended (an
+      // earlier probe of this edge): the nearest features move little.
+      const std::uint64_t key = (static_cast<std::uint64_t>(&p - pairs_.data()) << 42) |
+                                (static_cast<std::uint64_t>(ea) << 21) | static_cast<std::uint64_t>(eb);
+      const double d = separationLowerBound(in, &w.warm[key], cd + best * rho);
       if (d <= cd) return -1.0;
       if (rho > 0.0) best = std::min(best, (d - cd) / rho);
       continue;
@@ -376,15 +404,15 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
     // Split the larger node (a leaf never); the child nearer the other
     // node is visited first, so that the window shrinks early.
     const bool split_a = nb.isLeaf() || (!na.isLeaf() && na.radius >= nb.radius);
-    const Bvh& tree = split_a ? *A.side.tree : *B.side.tree;
+    const Moving& split = split_a ? A : B;
     const Bvh::Node& n = split_a ? na : nb;
-    const Eigen::Isometry3d& X_WN = split_a ? A.X_WS : B.X_WS;
     const Eigen::Vector3d& other_W = split_a ? cb_W : ca_W;
     int near = n.left, far = n.right;
-    if ((X_WN * tree.node(far).centre - other_W).norm() - tree.node(far).radius <
-        (X_WN * tree.node(near).centre - other_W).norm() - tree.node(near).radius) {
-      std::swap(near, far);
-    }
+    const auto gap = [&](int child) {
+      const Bvh::Node& c = split.side.tree->node(child);
+      return (split.X_WS * c.centre - other_W).norm() - c.radius;
+    };
+    if (gap(far) < gap(near)) std::swap(near, far);
     if (split_a) {
       stack.emplace_back(far, eb);
       stack.emplace_back(near, eb);

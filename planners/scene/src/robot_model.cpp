@@ -148,16 +148,32 @@ void RobotModel::linkPoses(const double* q, std::vector<Eigen::Isometry3d>* X_BL
   (*X_BL)[0].setIdentity();
   for (std::size_t k = 1; k < links_.size(); ++k) {
     const Joint& j = joints_[static_cast<std::size_t>(links_[k].parent_joint)];
-    Eigen::Isometry3d X = (*X_BL)[static_cast<std::size_t>(j.parent_link)] * j.X_PJ;
-    if (j.moves()) {
-      const double value = j.value(q[j.variable]);
-      if (j.type == JointType::kPrismatic) {
-        X.translate(value * j.axis_J);
-      } else {
-        X.rotate(Eigen::AngleAxisd(value, j.axis_J));
-      }
+    Eigen::Isometry3d& X = (*X_BL)[k];
+    X = (*X_BL)[static_cast<std::size_t>(j.parent_link)] * j.X_PJ;
+    if (!j.moves()) continue;
+    const double value = j.value(q[j.variable]);
+    if (j.type == JointType::kPrismatic) {
+      X.translation() += X.linear() * (value * j.axis_J);
+      continue;
     }
-    (*X_BL)[k] = X;
+    // A turn about a coordinate axis (most URDF joints) mixes two columns;
+    // any other axis goes through its rotation matrix.
+    int axis = -1;
+    for (int i = 0; i < 3; ++i) {
+      if (j.axis_J[i] == 1.0 && j.axis_J[(i + 1) % 3] == 0.0 && j.axis_J[(i + 2) % 3] == 0.0) axis = i;
+    }
+    if (axis < 0) {
+      X.linear() = X.linear() * Eigen::AngleAxisd(value, j.axis_J).toRotationMatrix();
+      continue;
+    }
+    const double c = std::cos(value);
+    const double s = std::sin(value);
+    const int u = (axis + 1) % 3;
+    const int v = (axis + 2) % 3;
+    const Eigen::Vector3d cu = X.linear().col(u);
+    const Eigen::Vector3d cv = X.linear().col(v);
+    X.linear().col(u) = c * cu + s * cv;
+    X.linear().col(v) = c * cv - s * cu;
   }
 }
 

@@ -182,6 +182,7 @@ class ArmScene {
   std::shared_ptr<const scene::World> world_;
   scene::AllowedCollisions filter_;
   Eigen::Isometry3d X_WB_;
+  bool base_is_identity_ = false;  ///< X_WB_ is exactly the identity (linkPoses skips it)
   ArmSceneOptions options_;
   Bvh world_tree_;
   std::vector<const ConvexPolytope*> world_polytopes_;

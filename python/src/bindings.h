@@ -31,5 +31,10 @@ void bindBatch(py::module_& m);
 /// mddual.Scene and mddual.SceneError (only when the planning layer is built:
 /// MDDUAL_PYTHON_HAS_PLANNING).
 void bindScene(py::module_& m);
+/// mddual.RobotModel, Srdf and AllowedCollisions (with the planning layer).
+void bindRobot(py::module_& m);
+/// mddual.ArmScene, ArmProblem, list_arm_problems and load_arm_problem (with
+/// the planning layer; after bindRobot).
+void bindArms(py::module_& m);
 
 }  // namespace mddual::python

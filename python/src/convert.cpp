@@ -184,6 +184,29 @@ ScalarBatch scalarBatchFrom(const py::handle& obj, const char* name) {
   return batch;
 }
 
+StateBatch stateBatchFrom(const py::handle& obj, const char* name, int d, const char* noun) {
+  const std::string n = std::string(noun);
+  const std::string expected =
+      "a (K, " + std::to_string(d) + ") array of " + n + "s or one " + n + " of " + std::to_string(d) + " numbers";
+  const DoubleArray a = toDoubleArray(obj, name, expected.c_str());
+  StateBatch batch;
+  if (a.ndim() == 1 && a.shape(0) == d) {
+    batch.values.assign(a.data(), a.data() + d);
+    return batch;
+  }
+  if (a.ndim() != 2 || a.shape(1) != d) {
+    throw py::value_error(std::string(name) + ": expected " + expected + ", got shape " + shapeText(a));
+  }
+  batch.batched = true;
+  batch.count = static_cast<std::size_t>(a.shape(0));
+  batch.values.assign(a.data(), a.data() + a.size());
+  return batch;
+}
+
+std::string itemName(const char* name, std::size_t k, bool batched) {
+  return batched ? std::string(name) + "[" + std::to_string(k) + "]" : std::string(name);
+}
+
 void BatchSize::add(std::size_t size, bool batched, const char* name) {
   if (!batched) return;
   if (first_ != nullptr && size != size_) {
@@ -194,6 +217,13 @@ void BatchSize::add(std::size_t size, bool batched, const char* name) {
     first_ = name;
     size_ = size;
   }
+}
+
+std::size_t batchSizeOf(const StateBatch& a, const char* a_name, const StateBatch& b, const char* b_name) {
+  BatchSize size;
+  size.add(a.count, a.batched, a_name);
+  size.add(b.count, b.batched, b_name);
+  return size.size();
 }
 
 }  // namespace mddual::python

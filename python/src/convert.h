@@ -61,6 +61,23 @@ struct ScalarBatch {
 };
 ScalarBatch scalarBatchFrom(const py::handle& obj, const char* name);
 
+/// Rows of d numbers for a batch: (d,) (one for every query) or (K, d),
+/// flattened. ValueError naming `name` for another shape, the message
+/// calling a row a `noun` ("a (K, 3) array of states or one state of 3
+/// numbers").
+struct StateBatch {
+  std::vector<double> values;
+  std::size_t count = 1;
+  bool batched = false;
+  const double* row(std::size_t k, int d) const {
+    return values.data() + (batched ? k * static_cast<std::size_t>(d) : 0);
+  }
+};
+StateBatch stateBatchFrom(const py::handle& obj, const char* name, int d, const char* noun);
+
+/// "Q[3]" for row 3 of a batch, "Q" for a single row.
+std::string itemName(const char* name, std::size_t k, bool batched);
+
 /// The common batch size K of batched arguments (ValueError naming the two
 /// arguments that disagree); 1 when none is batched.
 class BatchSize {
@@ -72,5 +89,8 @@ class BatchSize {
   std::size_t size_ = 1;
   const char* first_ = nullptr;
 };
+
+/// The common size of two batches of rows (BatchSize over both).
+std::size_t batchSizeOf(const StateBatch& a, const char* a_name, const StateBatch& b, const char* b_name);
 
 }  // namespace mddual::python

@@ -19,5 +19,7 @@ PYBIND11_MODULE(mddual, m) {
   mp::bindBatch(m);
 #ifdef MDDUAL_PYTHON_HAS_PLANNING
   mp::bindScene(m);
+  mp::bindRobot(m);
+  mp::bindArms(m);
 #endif
 }

@@ -21,6 +21,7 @@
 #include "mddual/planning/mdd_scene.h"
 #include "mddual/planning/problem_setup.h"
 #include "mddual/planning/state_space.h"
+#include "planning_convert.h"
 
 namespace mddual::python {
 namespace {
@@ -37,31 +38,6 @@ int stateDimension(mp::SpaceKind kind) {
     case mp::SpaceKind::kR3: return 3;
   }
   return 0;
-}
-
-/// States for a batch: (d,) (one for every query) or (K, d), flattened.
-struct StateBatch {
-  std::vector<double> values;
-  std::size_t count = 1;
-  bool batched = false;
-};
-
-StateBatch stateBatchFrom(const py::handle& obj, const char* name, int d) {
-  const std::string expected =
-      "a (K, " + std::to_string(d) + ") array of states or one state of " + std::to_string(d) + " numbers";
-  const DoubleArray a = toDoubleArray(obj, name, expected.c_str());
-  StateBatch batch;
-  if (a.ndim() == 1 && a.shape(0) == d) {
-    batch.values.assign(a.data(), a.data() + d);
-    return batch;
-  }
-  if (a.ndim() != 2 || a.shape(1) != d) {
-    throw py::value_error(std::string(name) + ": expected " + expected + ", got shape " + shapeText(a));
-  }
-  batch.batched = true;
-  batch.count = static_cast<std::size_t>(a.shape(0));
-  batch.values.assign(a.data(), a.data() + a.size());
-  return batch;
 }
 
 /// An OMPL state of `space`, freed with it.
@@ -116,10 +92,6 @@ scene::SpaceKind spaceKindFrom(const std::string& text) {
     if (text == mp::toString(mp::toPlanningKind(kind))) return kind;
   }
   throw py::value_error("space: expected 'SE2', 'SE3', 'R2' or 'R3', got '" + mddual::clipForMessage(text) + "'");
-}
-
-std::string itemName(const char* name, std::size_t k, bool batched) {
-  return batched ? std::string(name) + "[" + std::to_string(k) + "]" : std::string(name);
 }
 
 class Scene {
@@ -185,7 +157,7 @@ class Scene {
   }
 
   Eigen::Matrix4d poseOf(const py::object& state) const {
-    const StateBatch b = stateBatchFrom(state, "state", dim_);
+    const StateBatch b = stateBatchFrom(state, "state", dim_, "state");
     if (b.batched) throw py::value_error("state: expected one state, got a batch");
     StateHolder s(space_->stateSpace());
     s.set(b.values.data(), dim_, "state");
@@ -206,14 +178,14 @@ class Scene {
   }
 
   py::object isValid(const py::object& states) const {
-    const StateBatch b = stateBatchFrom(states, "states", dim_);
+    const StateBatch b = stateBatchFrom(states, "states", dim_, "state");
     py::array_t<bool> out(static_cast<py::ssize_t>(b.count));
     bool* o = out.mutable_data();
     {
       py::gil_scoped_release release;
       StateHolder s(space_->stateSpace());
       for (std::size_t k = 0; k < b.count; ++k) {
-        s.set(b.values.data() + k * static_cast<std::size_t>(dim_), dim_, itemName("states", k, b.batched));
+        s.set(b.row(k, dim_), dim_, itemName("states", k, b.batched));
         const Eigen::Isometry3d X_WR = space_->pose(s.get());
         o[k] = space_->positionInBounds(X_WR.translation()) && !scene_->collides(X_WR);
       }
@@ -223,12 +195,9 @@ class Scene {
   }
 
   py::dict checkEdges(const py::object& starts, const py::object& ends) const {
-    const StateBatch s1 = stateBatchFrom(starts, "starts", dim_);
-    const StateBatch s2 = stateBatchFrom(ends, "ends", dim_);
-    BatchSize size;
-    size.add(s1.count, s1.batched, "starts");
-    size.add(s2.count, s2.batched, "ends");
-    const std::size_t n = size.size();
+    const StateBatch s1 = stateBatchFrom(starts, "starts", dim_, "state");
+    const StateBatch s2 = stateBatchFrom(ends, "ends", dim_, "state");
+    const std::size_t n = batchSizeOf(s1, "starts", s2, "ends");
     py::array_t<bool> collides(static_cast<py::ssize_t>(n));
     py::array_t<bool> start_collides(static_cast<py::ssize_t>(n));
     py::array_t<double> fraction(static_cast<py::ssize_t>(n));
@@ -241,10 +210,9 @@ class Scene {
       py::gil_scoped_release release;
       StateHolder a(space_->stateSpace());
       StateHolder b(space_->stateSpace());
-      const auto d = static_cast<std::size_t>(dim_);
       for (std::size_t k = 0; k < n; ++k) {
-        a.set(s1.values.data() + (s1.batched ? k * d : 0), dim_, itemName("starts", k, s1.batched));
-        b.set(s2.values.data() + (s2.batched ? k * d : 0), dim_, itemName("ends", k, s2.batched));
+        a.set(s1.row(k, dim_), dim_, itemName("starts", k, s1.batched));
+        b.set(s2.row(k, dim_), dim_, itemName("ends", k, s2.batched));
         const mp::EdgeContact r = mp::edgeContact(*scene_, *space_, a.get(), b.get());
         c[k] = r.collides;
         sc[k] = r.start_collides;
@@ -317,19 +285,6 @@ class Scene {
   std::shared_ptr<mp::MddScene> scene_;
   int dim_ = 0;
 };
-
-std::vector<ConvexPolytope> polytopes(const std::vector<scene::Piece>& pieces) {
-  std::vector<ConvexPolytope> out;
-  out.reserve(pieces.size());
-  for (const scene::Piece& p : pieces) out.push_back(p.polytope);
-  return out;
-}
-
-std::vector<std::string> origins(const std::vector<scene::Piece>& pieces) {
-  std::vector<std::string> out;
-  for (const scene::Piece& p : pieces) out.push_back(p.origin);
-  return out;
-}
 
 }  // namespace
 

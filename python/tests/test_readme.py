@@ -33,3 +33,18 @@ def test_readme_scene_example_runs_and_prints_its_comments(monkeypatch):
     with contextlib.redirect_stdout(out):
         exec(compile(block, str(README), "exec"), {"mddual": mddual})
     assert out.getvalue().splitlines() == ["R3 [1. 5. 5.]", "True", "[ True] [0.14416667]", "[2.595]"]
+
+
+def test_readme_arm_example_runs_and_prints_its_comments(monkeypatch):
+    import mddual
+    import numpy as np
+    import pytest
+
+    if not hasattr(mddual, "ArmScene"):
+        pytest.skip("mddual was built without the planning layer")
+    monkeypatch.chdir(README.parent.parent)
+    block = re.findall(r"```python\n(.*?)```", README.read_text(), re.S)[2]
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(block, str(README), "exec"), {"mddual": mddual, "np": np})
+    assert out.getvalue().splitlines() == ["8 finger_left_joint", "[0.   0.   1.36]", "373 373", "True 0.853"]

@@ -9,16 +9,18 @@ namespace mddual::detail {
 namespace {
 
 void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) {
-  // A hierarchy's queries repeat poses: the identity for world pieces and one
-  // robot pose for many pairs. The identity and the last pose this thread
-  // validated are accepted on an exact comparison (NaN never compares equal),
-  // which costs a twentieth of the check (callgrind, the apartment's state
-  // checks: the check was 4.5% of their instructions).
+  // A hierarchy's queries repeat poses: the identity for world pieces, one
+  // robot pose for many pairs, two link poses for an arm's self pair. The
+  // identity and the last two poses this thread validated are accepted on an
+  // exact comparison (NaN never compares equal), which costs a twentieth of
+  // the check (callgrind, the apartment's state checks: the check was 4.5% of
+  // their instructions; an arm's motion checks: 5%, with one pose kept).
   using Pose34 = Eigen::Matrix<double, 3, 4>;
   static const Pose34 kIdentity = Pose34::Identity();
-  thread_local Pose34 last_valid = Pose34::Identity();
+  thread_local Pose34 last_valid[2] = {Pose34::Identity(), Pose34::Identity()};
+  thread_local int older = 0;
   const auto X34 = X.matrix().topRows<3>();
-  if (X34 == kIdentity || X34 == last_valid) return;
+  if (X34 == kIdentity || X34 == last_valid[0] || X34 == last_valid[1]) return;
   const Eigen::Matrix3d& R = X.linear();
   const bool finite = R.allFinite() && X.translation().allFinite();
   if (finite && X.translation().cwiseAbs().maxCoeff() > defaults::kMaxCoordinate) {
@@ -33,7 +35,8 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
     throw InvalidInputError(std::string(query) + ": pose " + name +
                             " is not a rigid transform (its rotation part must be orthonormal with determinant 1)");
   }
-  last_valid = X34;
+  last_valid[older] = X34;
+  older = 1 - older;
 }
 
 }  // namespace

@@ -105,8 +105,8 @@ class ArmScene {
   /// when no pair exists.
   double clearance(const double* q, ArmContact* which = nullptr) const;
   /// The certified motion check of the edge from q0 to q1 (see the file
-  /// comment); `query` as MddScene's: kValidity first tests the states at
-  /// t = 1, 1/2, 1/4 and 3/4 and stops at any contact; kFirstContact and
+  /// comment); `query` as MddScene's: kValidity first tests the state at
+  /// t = 1 and stops at any contact; kFirstContact and
   /// kLastValid return the lower bound of the first one.
   ArmEdgeResult checkEdge(const double* q0, const double* q1, EdgeQuery query) const;
 

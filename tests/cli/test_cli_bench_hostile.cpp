@@ -1,4 +1,4 @@
-// `mddual bench` and `mddual bench-report` on hostile input (issue 11): a
+// `mddual bench` and `mddual bench-report` on hostile input: a
 // start or goal state in collision or out of bounds, planner parameters that
 // OMPL checks at set-up, an output folder that cannot be written, a 10 MB
 // problem name, a log cut off inside its CPU-info block

@@ -1,4 +1,4 @@
-// Hostile input to the JSON Lines commands (issue 11): lines nested tens of
+// Hostile input to the JSON Lines commands: lines nested tens of
 // thousands deep, a line that runs out of memory, ids beyond 64-bit integers,
 // a directory as --input, an unknown subcommand, --delta values the methods
 // cannot run with, and huge user strings in messages. Each gets a clear error
@@ -19,7 +19,7 @@ namespace {
 
 /// Nesting depth the CLI accepts (cli/jsonl.h kMaxJsonDepth).
 constexpr int kMaxDepth = 64;
-/// Deep enough to overflow the stack of a recursive writer (issue 11's case).
+/// Deep enough to overflow the stack of a recursive writer.
 constexpr int kHostileDepth = 70000;
 
 std::string nested(int depth) {

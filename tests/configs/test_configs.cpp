@@ -68,11 +68,9 @@ TEST(Configs, ThinWallsAreThinnerThanOmplsDefaultResolution) {
 
 // Each rock of convex_field is one convex piece, as the configs' README says:
 // its OBJ mesh is the triangulated hull of its vertices, so the loader keeps it
-// as one solid kConvex piece, not as a hollow soup of triangles (issue 10: 19
-// rocks with slightly non-planar side faces loaded as soups). The README
-// says more: every face is planar as loaded. So each rock is convex with the
-// round-off allowance alone (mesh_convex_tolerance = 0), not only within the
-// default tolerance, and is closed.
+// as one solid kConvex piece, not as a hollow soup of triangles (19 rocks with slightly non-planar side faces loaded as
+// soups). The README says more: every face is planar as loaded. So each rock is convex with the round-off allowance
+// alone (mesh_convex_tolerance = 0), not only within the default tolerance, and is closed.
 TEST(Configs, ConvexFieldRocksLoadAsOneConvexPieceEach) {
   constexpr int kRocks = 60;
   LoadOptions exact;

@@ -1,10 +1,8 @@
-// MddMotionValidator on the mesh configs of scripts/make_configs.py (issue 9:
-// bugtrap, twistycool, cubicles_mesh, apartment in SE(3), maze_planar in
-// SE(2)), as tests/planners/ompl/test_motion.cpp checks the scenes built in
-// code: on random translating and rotating edges, zero misses against a dense
-// FCL check, translation first contacts equal to an FCL bisection to 1e-9 of
-// the edge, and lastValid per OMPL's contract on every invalid edge (all
-// through testing::checkEdge).
+// MddMotionValidator on the mesh configs of scripts/make_configs.py (bugtrap, twistycool, cubicles_mesh, apartment in
+// SE(3), maze_planar in SE(2)), as tests/planners/ompl/test_motion.cpp checks the scenes built in code: on random
+// translating and rotating edges, zero misses against a dense FCL check, translation first contacts equal to an FCL
+// bisection to 1e-9 of the edge, and lastValid per OMPL's contract on every invalid edge (all through
+// testing::checkEdge).
 //
 // Uniform edges in these worlds mostly touch nothing, so the edges start near
 // the config's witness path or near a random world triangle, and are a few

@@ -118,7 +118,7 @@ std::shared_ptr<og::SimpleSetup> ballProblem(bool planar) {
   return ss;
 }
 
-// Issue 9 item 8: every planner name (OMPL.app's, the rest of OMPL 1.5's
+// Every planner name (OMPL.app's, the rest of OMPL 1.5's
 // geometric planners that need only the space information, ours) builds a
 // planner that sets up and runs on a small SE(2) and SE(3) problem, seeded
 // and within a budget of iterations; all but SST solve it, with a valid path.

@@ -346,7 +346,7 @@ TEST_F(FrontendSetup, Errors) {
   EXPECT_EQ(selectPlanners(p, {}).size(), 2u);
   ASSERT_EQ(selectPlanners(p, {"mdd_rrtconnect"}).size(), 1u);
   EXPECT_EQ(selectPlanners(p, {"mdd_rrtconnect"})[0].name, "mdd_rrtconnect");
-  // A planner the cfg does not list runs with OMPL's defaults (issue 9 item 8).
+  // A planner the cfg does not list runs with OMPL's defaults.
   ASSERT_EQ(selectPlanners(p, {"prm"}).size(), 1u);
   EXPECT_EQ(selectPlanners(p, {"prm"})[0].name, "prm");
   expectError([&] { selectPlanners(p, {"prn"}); },

@@ -1,4 +1,4 @@
-// sceneDistance() and MddStateValidityChecker::clearance() (issue 10 item 3)
+// sceneDistance() and MddStateValidityChecker::clearance()
 // against FCL's distance over the same pieces: on random states of every test
 // scene, the clearance of a free state equals the smallest FCL distance over
 // the (robot piece, world piece) pairs to 1e-9 of the scene's size; a
@@ -39,7 +39,7 @@ namespace {
 namespace ob = ompl::base;
 using testing::Fixture;
 
-constexpr double kAccuracyRel = 1e-9;  ///< of the scene's size (issue 10)
+constexpr double kAccuracyRel = 1e-9;  ///< of the scene's size
 
 /// The FCL models of a scene's pieces, built once per scene.
 class FclPieces {

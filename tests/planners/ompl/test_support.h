@@ -62,7 +62,7 @@ inline Fixture makeFixture(const examples::ExampleScene& scene) {
 /// (SE(2)), blobs (SE(3)).
 std::vector<examples::ExampleScene> standardScenes(std::uint64_t seed);
 
-/// The four scenes of issue 3 loaded from files through the scene loaders:
+/// The four scenes loaded from files through the scene loaders:
 /// a URDF world and robot of primitives (boxes, cylinders, spheres; SE(3)), a
 /// non-convex OBJ world and robot (triangles; SE(3)), and the configs
 /// configs/maze_se2 (SE(2)) and configs/cubicles (SE(3)).

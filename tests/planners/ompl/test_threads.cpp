@@ -1,6 +1,6 @@
 // Concurrent use: the same checkers called from 8 threads at once give the
 // answers one thread gives, and the counters add up, on two scenes built in
-// code and on the mesh config configs/twistycool (issue 9); world updates
+// code and on the mesh config configs/twistycool; world updates
 // made between concurrent runs are seen by every thread. CI runs this
 // executable under ThreadSanitizer too (labels tsan / planning-tsan), so it
 // stays small.
@@ -125,7 +125,7 @@ void expectSame(const Answers& a, const Answers& b, int thread) {
 
 class Threads : public ::testing::TestWithParam<int> {};
 
-/// The scenes: built in code (planar, mesh), and a mesh config of issue 9
+/// The scenes: built in code (planar, mesh), and a mesh config
 /// (configs/twistycool: non-convex triangle meshes, both hierarchies, rotating
 /// SE(3) edges through the slot; the smallest of the mesh configs).
 examples::ExampleScene threadScene(int index) {

@@ -1,4 +1,4 @@
-// Meshes that are convex up to a tolerance (issue 10 item 6): the
+// Meshes that are convex up to a tolerance: the
 // mesh_convex_tolerance option, the closed-mesh test, the warning for a
 // closed mesh loaded as a hollow triangle soup, and the counts behind the
 // scene summary. The meshes are written by the tests (OBJ, full precision).
@@ -302,7 +302,7 @@ std::pair<double, double> volumeAndArea(const ConvexPolytope& P) {
   return {volume, area};
 }
 
-// The convex_field case of issue 10 as a family: 40 random prism rocks whose
+// The convex_field case as a family: 40 random prism rocks whose
 // vertices are moved by 0.1 of the tolerance all load as one convex piece;
 // moved by 10 times it, most do not, and every one that still loads as its
 // hull is its hull within e (oracle: every vertex of the mesh within e of the

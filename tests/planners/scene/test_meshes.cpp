@@ -258,7 +258,7 @@ TEST(Meshes, RecentringMovesTheMeanVertexToTheOrigin) {
   expectBox(loadWorld(file, recentre).box(), {0, 0, 0}, {4, 4, 4});
 }
 
-// ---- Robust loading: what OMPL.app reads, this reads (issue 9 item 5) ----
+// ---- Robust loading: what OMPL.app reads, this reads ----
 
 /// OBJ text with coordinates in full double precision (the reader rounds
 /// them to floats).
@@ -492,7 +492,7 @@ TEST(MeshRobustness, LargeNearlyCoplanarConvexMeshesAlwaysLoad) {
   }
 }
 
-// Slivers and zero-area triangles (issue 9: escape_robot.dae's triangle 1036
+// Slivers and zero-area triangles (escape_robot.dae's triangle 1036
 // failed the load with qhull's "not enough points(3) to construct initial
 // simplex"). A closed non-convex mesh (an L of two boxes) plus: a triangle
 // with a repeated corner, one with three collinear corners, and 40 slivers of
@@ -558,8 +558,8 @@ TEST(MeshRobustness, SliversAndZeroAreaTrianglesAreSkippedAndReported) {
 }
 
 // Small, well-shaped triangles far from the origin (0.03 at up to 1e5, where
-// the floats' spacing is 0.008) are beyond the hull code's precision today
-// (issue 11). Skipping them would open holes a planner goes through, so the
+// the floats' spacing is 0.008) are beyond the hull code's precision today.
+// Skipping them would open holes a planner goes through, so the
 // loader either builds every one that is no sliver or fails naming the file,
 // the triangle and why; it never drops one with a warning.
 TEST(MeshRobustness, FarSmallTrianglesAreNeverDroppedSilently) {
@@ -637,7 +637,7 @@ TEST(MeshRobustness, DuplicateVerticesAreHarmless) {
   EXPECT_TRUE(info.skipped_triangles.empty());
 }
 
-// Issue 11: a vertex of 1e200 was "non-finite" with no reason given.
+// A vertex of 1e200 was "non-finite" with no reason given.
 TEST(MeshErrors, VertexBeyondFloatRangeSaysSo) {
   TempDir dir;
   const auto file = dir.write("huge.obj", "v 0 0 0\nv 1e200 0 0\nv 0 1 0\nf 1 2 3\n");

@@ -157,7 +157,7 @@ TEST(Urdf, EmptyWorldIsAllowedButARobotNeedsGeometry) {
   expectSceneError([&] { loadBody(file); }, {"empty.urdf", "no collision geometry"});
 }
 
-// Issue 11: a URDF with 50,000 nested elements crashed urdfdom's XML parser
+// A URDF with 50,000 nested elements crashed urdfdom's XML parser
 // (stack overflow); the nesting is now refused before parsing.
 TEST(UrdfErrors, PathologicalNestingIsRefusedBeforeParsing) {
   TempDir dir;

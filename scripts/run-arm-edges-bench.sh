@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# One arm motion check and one state check, mdd's certified check against
+# OMPL's DiscreteMotionValidator with FCL at its default resolution, on the
+# same link pairs, per problem set of configs/arm7 (mddual_bench_arm_edges:
+# edges drawn as RRT-Connect draws them, the fastest of the passes counts).
+# Builds the benchmark (Release, build/release) and writes
+# docs/results/arm-edges.md with this command and the build.
+#
+#   scripts/run-arm-edges-bench.sh [SET ...]
+#
+# MDDUAL_ARM_PROBLEMS (default 2) problems per set, MDDUAL_ARM_EDGES (default
+# 150) edges per problem, MDDUAL_ARM_PASSES (default 3) timed passes;
+# MDDUAL_JOBS the build's parallelism.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+sets=("$@")
+[ ${#sets[@]} -eq 0 ] && sets=(bookshelf_thin cage box table_pick table_under_pick table_bars)
+problems="${MDDUAL_ARM_PROBLEMS:-2}"
+edges="${MDDUAL_ARM_EDGES:-150}"
+passes="${MDDUAL_ARM_PASSES:-3}"
+jobs="${MDDUAL_JOBS:-$(nproc)}"
+cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build/release -j "$jobs" --target mddual_bench_arm_edges >/dev/null
+out=docs/results/arm-edges.md
+command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_EDGES=$edges MDDUAL_ARM_PASSES=$passes ./scripts/run-arm-edges-bench.sh ${*}"
+{
+  echo "# arm7: one certified motion check against FCL's discrete one"
+  echo
+  echo "Made by \`${command% }\` at $(git rev-parse --short HEAD) on $(date -u +%Y-%m-%d)," \
+    "$(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'))."
+  echo "Per set, the first $problems problems, $edges edges each drawn as RRT-Connect draws them"
+  echo "(from a valid state toward a uniform sample, at most 0.2 of the space's extent), checked by"
+  echo "mdd (certified) and by OMPL's DiscreteMotionValidator with FCL at the default resolution, on"
+  echo "the same link pairs; thread CPU time, the fastest of $passes passes. \"mdd only\": edges FCL calls"
+  echo "valid and mdd refuses (a contact between FCL's samples, or a false alarm); \"fcl only\": edges"
+  echo "mdd calls valid and FCL refuses (must be 0). fcl/mdd above 1: mdd is faster."
+  echo
+  echo "| set | edges | colliding | mdd only | fcl only | mdd queries | fcl states | mdd us/edge | fcl us/edge | fcl/mdd | mdd us/state | fcl us/state | fcl/mdd |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+} > "$out"
+for s in "${sets[@]}"; do
+  ./build/release/benchmarks/planning/mddual_bench_arm_edges "configs/arm7/problems/$s" \
+    --robot configs/arm7/arm7.urdf --srdf configs/arm7/arm7.srdf --problems "$problems" --edges "$edges" \
+    --passes "$passes" | grep '^| all ' | sed "s/^| all /| $s /" >> "$out"
+done
+echo "run-arm-edges-bench: $out"

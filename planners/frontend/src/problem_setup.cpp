@@ -17,6 +17,8 @@
 #include <mutex>
 
 #include "mddual/error.h"
+#include "mddual/penetration.h"
+#include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/planner_factory.h"
 #include "mddual/query.h"
 
@@ -219,24 +221,45 @@ void checkState(const Problem& problem, const std::string& which, const Eigen::I
                               ")");
     }
   }
-  // Every (robot piece, world piece) pair whose boxes meet, by the exact test.
+  // Every (robot piece, world piece) pair whose boxes meet, by the exact
+  // test, and the deepest overlap among them (exact penetration depth).
   std::vector<std::string> pairs;
   std::vector<int> candidates;
+  double deepest = 0.0;
+  std::size_t deepest_pair = 0;
+  bool depth_failed = false;
   const auto& robot = sc.robot.pieces();
   const auto& world = sc.world.pieces();
   for (const scene::Piece& r : robot) {
     candidates.clear();
     sc.world.candidates(scene::transformedBox(r.box, X_WR), &candidates);
     for (const int w : candidates) {
+      const scene::Piece& piece_w = world[static_cast<std::size_t>(w)];
       IntersectInput in;
       in.a = &r.polytope;
       in.X_WA = X_WR;
-      in.b = &world[static_cast<std::size_t>(w)].polytope;
+      in.b = &piece_w.polytope;
       const IntersectResult x = intersect(in);
       if (!x.intersecting) continue;
+      if (x.status != IntersectStatus::kTouching) {
+        PenetrationInput pd;
+        pd.a = &r.polytope;
+        pd.X_WA = X_WR;
+        pd.b = &piece_w.polytope;
+        double depth = 0.0;
+        try {
+          depth = penetrationDepth(pd).depth;
+        } catch (const std::exception&) {
+          depth_failed = true;  // the pair is named all the same; the depth is a hint
+        }
+        if (depth > deepest) {
+          deepest = depth;
+          deepest_pair = pairs.size();
+        }
+      }
       pairs.push_back("robot piece \"" + clipForMessage(r.origin) + "\" " +
                       (x.status == IntersectStatus::kTouching ? "touches" : "overlaps") + " world piece \"" +
-                      clipForMessage(world[static_cast<std::size_t>(w)].origin) + "\"");
+                      clipForMessage(piece_w.origin) + "\"");
     }
   }
   if (pairs.empty()) return;
@@ -247,8 +270,17 @@ void checkState(const Problem& problem, const std::string& which, const Eigen::I
   if (pairs.size() > kMaxCollisionsNamed) {
     named += "; and " + std::to_string(pairs.size() - kMaxCollisionsNamed) + " more pairs";
   }
+  // Which answer to trust: how deep the worst pair is, and what FCL's
+  // discrete check (the fcl checker, OMPL.app's) says of the same pieces.
+  const std::string depth = deepest > 0.0
+                                ? "the deepest overlap is " + number(deepest) + " (penetration depth of pair " +
+                                      std::to_string(deepest_pair + 1) + " of " + std::to_string(pairs.size()) + ")"
+                            : depth_failed ? "no penetration depth could be computed"
+                                           : "every pair only touches (penetration depth 0)";
+  const bool fcl_contact = FclScene(problem.robot(), problem.world()).collides(X_WR);
   throw InvalidInputError(where + " (position " + number(p_WR.x()) + ", " + number(p_WR.y()) + ", " + number(p_WR.z()) +
-                          ") is in collision: " + named + " (exact check; touching counts as collision)");
+                          ") is in collision: " + named + " (exact check; touching counts as collision); " + depth +
+                          "; FCL's collide() on the same pieces finds " + (fcl_contact ? "a contact" : "no contact"));
 }
 
 }  // namespace

@@ -384,6 +384,11 @@ TEST_F(FrontendSetup, StartAndGoalAreCheckedBeforePlanning) {
   const std::string wall0 = "world piece \"world.urdf: link 'wall_link', collision 0 (box)\"";
   const std::string wall1 = "world piece \"world.urdf: link 'wall_link', collision 1 (box)\"";
   const std::string tail = " (exact check; touching counts as collision)";
+  // The deepest overlap in closed form: the 0.5 m cube centred in the 0.02 m
+  // wall leaves it by 0.25 + 0.01 along x (along y it would need 0.35 or
+  // more); FCL's discrete check on the same boxes names a contact too.
+  const std::string deep = "; the deepest overlap is 0.26 (penetration depth of pair 1 of 1)";
+  const std::string fcl = "; FCL's collide() on the same pieces finds a contact";
   struct Case {
     std::vector<std::pair<std::string, std::string>> edits;
     std::string message;
@@ -391,13 +396,16 @@ TEST_F(FrontendSetup, StartAndGoalAreCheckedBeforePlanning) {
   const std::vector<Case> cases = {
       // The 0.5 m robot cube inside the wall (x in [4.99, 5.01], y < 6.5).
       {{{"start.x = 2\n", "start.x = 5\n"}},
-       "tiny.cfg: the start state (position 5, 5, 5) is in collision: " + robot + " overlaps " + wall0 + tail},
+       "tiny.cfg: the start state (position 5, 5, 5) is in collision: " + robot + " overlaps " + wall0 + tail + deep +
+           fcl},
       // Its face on the wall's face: touching is a collision for the exact checker.
       {{{"goal.x = 8\n", "goal.x = 5.26\n"}},
-       "tiny.cfg: the goal state (position 5.26, 5, 5) is in collision: " + robot + " touches " + wall0 + tail},
+       "tiny.cfg: the goal state (position 5.26, 5, 5) is in collision: " + robot + " touches " + wall0 + tail +
+           "; every pair only touches (penetration depth 0)" + fcl},
       // In the wall above the door (y in [6.5, 8.5]): the other piece.
       {{{"start.x = 2\n", "start.x = 5\n"}, {"start.y = 5\n", "start.y = 8.6\n"}},
-       "tiny.cfg: the start state (position 5, 8.6, 5) is in collision: " + robot + " overlaps " + wall1 + tail},
+       "tiny.cfg: the start state (position 5, 8.6, 5) is in collision: " + robot + " overlaps " + wall1 + tail + deep +
+           fcl},
       {{{"goal.x = 8\n", "goal.x = 12\n"}},
        "tiny.cfg: the goal state is outside the bounds of the space: goal.x = 12 is not in [0, 10] (volume.min.x, "
        "volume.max.x)"},
@@ -434,6 +442,10 @@ TEST_F(FrontendSetup, StartAndGoalAreCheckedBeforePlanning) {
               0u)
         << what;
     EXPECT_NE(what.find("; and 2 more pairs (exact check; touching counts as collision)"), std::string::npos) << what;
+    // Boxes of 0.1 m at heights 4.8 .. 5.2 in the cube [4.75, 5.25]: the
+    // middle one leaves it by 0.25 + 0.05 along any axis, the others by 0.1
+    // or 0.2 along z.
+    EXPECT_NE(what.find("; the deepest overlap is 0.3 (penetration depth of pair "), std::string::npos) << what;
     std::size_t named = 0;
     for (std::size_t at = what.find("world piece"); at != std::string::npos; at = what.find("world piece", at + 1)) {
       ++named;

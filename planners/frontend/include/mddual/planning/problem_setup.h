@@ -102,7 +102,10 @@ inline constexpr std::size_t kMaxCollisionsNamed = 3;
 /// OMPL's planners only report such a problem as unsolved. Throws
 /// InvalidInputError "<cfg>: the start state ...", naming the state, the
 /// bound it violates (axis, value, range), or the colliding robot and world
-/// pieces (their origins, e.g. "robot.urdf: link 'base', collision 0 (box)").
+/// pieces (their origins, e.g. "robot.urdf: link 'base', collision 0 (box)"),
+/// then what tells which answer to trust: the largest penetration depth among
+/// the overlapping pairs (exact) and whether FCL's collide() finds a contact
+/// on the same pieces.
 void checkStartAndGoal(const Problem& problem);
 
 /// The planning space kind of a cfg's space kind.

@@ -14,6 +14,7 @@ packages=(
   libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   python3 python3-matplotlib
   python3-dev python3-numpy python3-pytest pybind11-dev python3-pybind11
+  python3-pip python3-venv python3-setuptools python3-wheel
   clang libclang-rt-14-dev ninja-build
 )
 

@@ -74,6 +74,7 @@ struct BenchFlags {
   std::string report;
   std::string report_timeout;
   std::string last_valid_level;
+  bool allow_invalid_endpoints = false;
   // Arm problems (a MotionBenchMaker directory instead of a cfg).
   std::string robot;
   std::string srdf;
@@ -304,10 +305,25 @@ void checkLogs(const std::vector<fs::path>& logs) {
   }
 }
 
+/// The note under the summary table of a run with --allow-invalid-endpoints
+/// whose start or goal is in collision, on standard output and in `summary`.
+void appendEndpointNote(const fs::path& summary, const std::vector<std::string>& contacts) {
+  std::string note =
+      "\nEndpoints in contact (run with --allow-invalid-endpoints): a checker that finds the start or "
+      "the goal in collision solves no run, and every solution of the others ends in contact, so "
+      "its path verification fails.\n\n";
+  for (const std::string& c : contacts) note += "- " + c + "\n";
+  std::cout << note << std::flush;
+  std::ofstream out(summary, std::ios::app);
+  out << note;
+  if (!out) throw FatalError("cannot append to " + summary.string());
+}
+
 /// The database from `logs` (checked by checkLogs), then the report:
 /// DIR/bench.db, DIR/plots/*.png, DIR/summary.md; the table goes to
 /// standard output.
-void buildReport(const ReportTools& tools, const fs::path& dir, const std::vector<fs::path>& logs) {
+void buildReport(const ReportTools& tools, const fs::path& dir, const std::vector<fs::path>& logs,
+                 const std::vector<std::string>& endpoint_contacts = {}) {
   const fs::path db = dir / "bench.db";
   const fs::path stats_log = dir / "ompl_benchmark_statistics.out";
   std::error_code ec;
@@ -341,6 +357,7 @@ void buildReport(const ReportTools& tools, const fs::path& dir, const std::vecto
                      " s and was stopped (a larger limit: --report-timeout / bench-report --timeout)");
   }
   if (rc != 0) throw FatalError("scripts/bench_report.py failed (exit status " + std::to_string(rc) + ")");
+  if (!endpoint_contacts.empty()) appendEndpointNote(dir / "summary.md", endpoint_contacts);
   std::cout << "\ndatabase: " << db.string() << " (opens in Planner Arena)\n" << std::flush;
 }
 
@@ -505,6 +522,7 @@ void runArmBenchCommand(const BenchFlags& f) {
     throw FatalError("bench: " + f.config + " is a problem directory: give --robot URDF and --srdf SRDF");
   }
   if (!f.last_valid_level.empty()) throw FatalError("--last-valid-level: applies to cfg problems only");
+  if (f.allow_invalid_endpoints) throw FatalError("--allow-invalid-endpoints: applies to cfg problems only");
   mp::ArmBenchOptions options;
   try {
     if (!f.checkers.empty()) options.checkers = mp::parseArmCheckerList(f.checkers);
@@ -606,15 +624,21 @@ void runBenchCommand(const BenchFlags& f) {
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
   ompl::RNG::setSeed(mp::shardSeed(seed, options.shard));
 
+  options.setup.allow_invalid_endpoints = f.allow_invalid_endpoints;
   mp::Problem problem;
+  std::vector<std::string> endpoint_contacts;  // with --allow-invalid-endpoints
   try {
     problem = mp::loadProblem(f.config);
     mp::selectPlanners(problem, options.planners);  // an unknown name fails now
-    mp::checkBenchProblem(problem);                 // a start or goal in collision too
+    // A start or goal in collision too, unless --allow-invalid-endpoints.
+    endpoint_contacts = mp::checkBenchProblem(problem, f.allow_invalid_endpoints);
   } catch (const std::exception& e) {
     throw FatalError(e.what());
   }
   for (const std::string& w : problem.scene->warnings) std::cerr << "bench: warning: " << w << "\n";
+  for (const std::string& c : endpoint_contacts) {
+    std::cerr << "bench: warning: " << c << " (--allow-invalid-endpoints: the runs go on)\n";
+  }
   if (!f.output.empty()) {
     options.output_dir = f.output;
   } else if (!problem.config.output.empty()) {
@@ -664,7 +688,7 @@ void runBenchCommand(const BenchFlags& f) {
     return;
   }
   checkLogs(files);
-  buildReport(*tools, options.output_dir, files);
+  buildReport(*tools, options.output_dir, files, endpoint_contacts);
 }
 
 /// The checker tables (checker_registry.h) as the footer lists them: one
@@ -746,6 +770,9 @@ void registerBenchCommand(CLI::App& app) {
              "(3) up mean the finest (default " +
                  std::to_string(mp::kDefaultLastValidLevel) + ", MddSceneOptions::last_valid_level)",
              "K");
+  sub->add_flag("--allow-invalid-endpoints", flags->allow_invalid_endpoints,
+                "cfg problems: run even when the start or goal is in collision (by the exact test or a checker); "
+                "the contacts are printed and noted under the summary table, every path is still verified");
   textOption(sub, "--robot", &flags->robot, "problem directories: the robot's URDF", "URDF");
   textOption(sub, "--srdf", &flags->srdf, "problem directories: the robot's SRDF", "SRDF");
   textOption(sub, "--group", &flags->group, "problem directories: the planning group (default: each request's)",

@@ -54,6 +54,36 @@ std::set<std::string> runKeys(const fs::path& db) {
   return {rows.begin(), rows.end()};
 }
 
+// --allow-invalid-endpoints: a goal in contact (the cube's face on the
+// wall's) no longer stops the command; the runs go on, the checkers that
+// find the goal in collision solve none of them, and the contact is noted
+// under the summary table with its message.
+TEST(CliBench, AllowInvalidEndpointsRunsAndSaysSo) {
+  TempDir dir;
+  const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()) / "cfg");
+  std::string text = readFile(cfg.string());
+  text.replace(text.find("goal.x = 8\n"), 11, "goal.x = 5.26\n");
+  testing::writeTextFile(cfg, text);
+  const fs::path out = fs::path(dir.path()) / "out";
+  const std::vector<std::string> args{"bench",      cfg.string(), "--output", out.string(), "--checkers",   "mdd,fcl",
+                                      "--planners", "rrtconnect", "--runs",   "1",          "--time-limit", "0.2"};
+  const CliRun refused = runCli(args);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  std::vector<std::string> allowed_args = args;
+  allowed_args.push_back("--allow-invalid-endpoints");
+  const CliRun run = runCli(allowed_args);
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  const std::string contact = "tiny.cfg: the goal state (position 5.26, 5, 5) is in collision: robot piece";
+  EXPECT_NE(run.err.find("bench: warning: " + contact), std::string::npos) << run.err;
+  const std::string summary = readFile((out / "summary.md").string());
+  EXPECT_NE(summary.find("Endpoints in contact (run with --allow-invalid-endpoints)"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("- " + contact), std::string::npos) << summary;
+  EXPECT_NE(run.out.find("Endpoints in contact"), std::string::npos) << run.out;
+  // Both checkers find the touching goal in collision: two runs, none solved.
+  const fs::path db = out / "bench.db";
+  EXPECT_EQ(sql(db, "select count(*), sum(solved) from runs"), std::vector<std::string>{"2|0"});
+}
+
 TEST(CliBench, EndToEnd) {
   TempDir dir;
   const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()) / "cfg");

@@ -43,7 +43,8 @@ TEST(CliBenchHostile, InvalidStartOrGoalIsNamedBeforePlanning) {
       {tinyConfigWith(base / "start", "start.x = 2\n", "start.x = 5\n"),
        "mddual: tiny.cfg: the start state (position 5, 5, 5) is in collision: robot piece \"robot.urdf: link "
        "'cube_link', collision 0 (box)\" overlaps world piece \"world.urdf: link 'wall_link', collision 0 (box)\" "
-       "(exact check; touching counts as collision)\n"},
+       "(exact check; touching counts as collision); the deepest overlap is 0.26 (penetration depth of pair 1 of 1); "
+       "FCL's collide() on the same pieces finds a contact\n"},
       {tinyConfigWith(base / "goal", "goal.x = 8\n", "goal.x = 12\n"),
        "mddual: tiny.cfg: the goal state is outside the bounds of the space: goal.x = 12 is not in [0, 10] "
        "(volume.min.x, volume.max.x)\n"},

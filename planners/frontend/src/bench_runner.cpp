@@ -196,13 +196,15 @@ std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std
   return selectPlannerSpecs(problem.config.planners, names, problem.cfgName());
 }
 
-void checkBenchProblem(const Problem& problem) {
+std::vector<std::string> checkBenchProblem(const Problem& problem, bool allow_invalid_endpoints) {
   if (problem.name.size() > kMaxProblemNameBytes) {
     throw InvalidInputError(problem.cfgName() + ": the problem name '" + clipForMessage(problem.name) +
                             "' is too long: it names the experiment and the log files; at most " +
                             std::to_string(kMaxProblemNameBytes) + " bytes");
   }
+  if (allow_invalid_endpoints) return endpointCollisions(problem);
   checkStartAndGoal(problem);  // OMPL would only report every run unsolved
+  return {};
 }
 
 std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& options, const BenchObserver& observer) {
@@ -234,7 +236,7 @@ std::vector<BenchLog> runBench(const Problem& problem, const BenchOptions& optio
                             " runs per planner, so at most " + std::to_string(runs) + " shards");
   }
   const std::vector<scene::PlannerSpec> specs = selectPlanners(problem, options.planners);
-  checkBenchProblem(problem);
+  checkBenchProblem(problem, options.setup.allow_invalid_endpoints);
   const std::vector<int> run_indices = shardRuns(runs, shard);
   const int n = static_cast<int>(run_indices.size());
 

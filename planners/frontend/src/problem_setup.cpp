@@ -206,8 +206,9 @@ std::string number(double x) {
   return buf;
 }
 
-/// One state of checkStartAndGoal: `which` is "start" or "goal".
-void checkState(const Problem& problem, const std::string& which, const Eigen::Isometry3d& X_WR) {
+/// One state of endpointCollisions: `which` is "start" or "goal". Throws for
+/// a position outside the bounds; returns the collision's message, or "".
+std::string stateCollision(const Problem& problem, const std::string& which, const Eigen::Isometry3d& X_WR) {
   const scene::ProblemScene& sc = *problem.scene;
   const std::string where = problem.cfgName() + ": the " + which + " state";
   const Eigen::Vector3d p_WR = X_WR.translation();
@@ -262,7 +263,7 @@ void checkState(const Problem& problem, const std::string& which, const Eigen::I
                       clipForMessage(piece_w.origin) + "\"");
     }
   }
-  if (pairs.empty()) return;
+  if (pairs.empty()) return "";
   std::string named;
   for (std::size_t i = 0; i < pairs.size() && i < kMaxCollisionsNamed; ++i) {
     named += (i == 0 ? "" : "; ") + pairs[i];
@@ -278,17 +279,27 @@ void checkState(const Problem& problem, const std::string& which, const Eigen::I
                             : depth_failed ? "no penetration depth could be computed"
                                            : "every pair only touches (penetration depth 0)";
   const bool fcl_contact = FclScene(problem.robot(), problem.world()).collides(X_WR);
-  throw InvalidInputError(where + " (position " + number(p_WR.x()) + ", " + number(p_WR.y()) + ", " + number(p_WR.z()) +
-                          ") is in collision: " + named + " (exact check; touching counts as collision); " + depth +
-                          "; FCL's collide() on the same pieces finds " + (fcl_contact ? "a contact" : "no contact"));
+  return where + " (position " + number(p_WR.x()) + ", " + number(p_WR.y()) + ", " + number(p_WR.z()) +
+         ") is in collision: " + named + " (exact check; touching counts as collision); " + depth +
+         "; FCL's collide() on the same pieces finds " + (fcl_contact ? "a contact" : "no contact");
 }
 
 }  // namespace
 
-void checkStartAndGoal(const Problem& problem) {
+std::vector<std::string> endpointCollisions(const Problem& problem) {
   if (!problem.scene) throw InvalidInputError("checkStartAndGoal: the problem has no scene");
-  checkState(problem, "start", problem.scene->start);
-  checkState(problem, "goal", problem.scene->goal);
+  std::vector<std::string> out;
+  for (const auto& [which, X_WR] : {std::pair<const char*, const Eigen::Isometry3d*>{"start", &problem.scene->start},
+                                    std::pair<const char*, const Eigen::Isometry3d*>{"goal", &problem.scene->goal}}) {
+    std::string message = stateCollision(problem, which, *X_WR);
+    if (!message.empty()) out.push_back(std::move(message));
+  }
+  return out;
+}
+
+void checkStartAndGoal(const Problem& problem) {
+  const std::vector<std::string> collisions = endpointCollisions(problem);
+  if (!collisions.empty()) throw InvalidInputError(collisions.front());
 }
 
 SpaceKind toPlanningKind(scene::SpaceKind kind) {
@@ -375,9 +386,11 @@ ProblemSetup::ProblemSetup(const Problem& problem, const std::string& checker, c
   // call a state free that a checker, deciding contact within its precision
   // (relative to the size of the pieces), calls touching, e.g. beside a world
   // triangle 1e12 across; every run would then end at "invalid start".
+  // With allow_invalid_endpoints the runs go on all the same (the planners
+  // then solve nothing with this checker, which the report shows).
   for (const auto& [which, state] : {std::pair<const char*, const ob::State*>{"start", start.get()},
                                      std::pair<const char*, const ob::State*>{"goal", goal.get()}}) {
-    if (state_checker->isValid(state)) continue;
+    if (options.allow_invalid_endpoints || state_checker->isValid(state)) continue;
     throw InvalidInputError(where + ": the " + which + " state is in collision for the " + checker +
                             " checker (OMPL's planners would refuse it in every run), though the bench's exact " +
                             "check of each pair of pieces may find it free: the checkers decide contact within " +

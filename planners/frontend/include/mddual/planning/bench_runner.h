@@ -153,7 +153,9 @@ std::vector<scene::PlannerSpec> selectPlanners(const Problem& problem, const std
 /// Checks what runBench needs of a problem before anything runs: a name of
 /// at most kMaxProblemNameBytes, and start and goal states within the bounds
 /// and free (checkStartAndGoal). Throws InvalidInputError naming the cfg.
-void checkBenchProblem(const Problem& problem);
+/// With allow_invalid_endpoints (SetupOptions), a start or goal in collision
+/// is returned as its message (endpointCollisions) instead of thrown.
+std::vector<std::string> checkBenchProblem(const Problem& problem, bool allow_invalid_endpoints = false);
 
 /// Runs the benchmark (see the file comment). Throws InvalidInputError for
 /// bad options (no checker, runs < 1, time or memory limit <= 0 or above

@@ -76,6 +76,10 @@ struct SetupOptions {
   FclCcdSolver continuous_solver = FclCcdSolver::kConservativeAdvancement;
   /// mdd: the MddScene's options (rotation tolerance, refinement levels).
   MddSceneOptions mdd;
+  /// Set up even when the checker finds the start or the goal in collision
+  /// (ProblemSetup otherwise throws): the planners then refuse them in every
+  /// run. For a config whose endpoints the user trusts more than the checker.
+  bool allow_invalid_endpoints = false;
 };
 
 /// What a rigid checker is installed on.

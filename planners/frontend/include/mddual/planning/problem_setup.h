@@ -107,6 +107,11 @@ inline constexpr std::size_t kMaxCollisionsNamed = 3;
 /// the overlapping pairs (exact) and whether FCL's collide() finds a contact
 /// on the same pieces.
 void checkStartAndGoal(const Problem& problem);
+/// The same checks, but a state in collision is returned as the message
+/// checkStartAndGoal would throw (start first, then goal; empty when both are
+/// free) instead of thrown; a position outside the bounds still throws. For
+/// `mddual bench --allow-invalid-endpoints`.
+std::vector<std::string> endpointCollisions(const Problem& problem);
 
 /// The planning space kind of a cfg's space kind.
 SpaceKind toPlanningKind(scene::SpaceKind kind);

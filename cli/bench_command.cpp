@@ -3,7 +3,8 @@
 // every solution verified (mddual::planning::runBench), then the database
 // (OMPL's ompl_benchmark_statistics), plots and the summary table
 // (scripts/bench_report.py). Registered only when the planning layer is built
-// (MDDUAL_CLI_WITH_BENCH).
+// (MDDUAL_CLI_WITH_BENCH). Built with Bullet (MDDUAL_HAVE_BULLET), the
+// Bullet peer's checker hull-cast joins the tables before anything reads them.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -39,6 +40,9 @@
 #include "mddual/planning/bench_logs.h"
 #include "mddual/planning/bench_runner.h"
 #include "mddual/planning/checker_registry.h"
+#ifdef MDDUAL_HAVE_BULLET
+#include "mddual/planning/hull_cast_checkers.h"
+#endif
 
 extern char** environ;
 
@@ -743,6 +747,9 @@ std::string reportTimeoutHelp() {
 }  // namespace
 
 void registerBenchCommand(CLI::App& app) {
+#ifdef MDDUAL_HAVE_BULLET
+  mp::registerHullCastCheckers();  // before the help text lists the tables
+#endif
   auto flags = std::make_shared<BenchFlags>();
   CLI::App* sub =
       app.add_subcommand("bench", "OMPL benchmark of a config with MDD-DUAL and FCL checkers, verified solutions");

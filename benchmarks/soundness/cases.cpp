@@ -7,6 +7,7 @@
 #include "mddual/constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
+#include "mddual/planning/dense_contact.h"
 #include "mddual/planning/example_scenes.h"
 
 namespace mddual::soundness {
@@ -309,6 +310,100 @@ Box placed(const Box& b, const Eigen::Isometry3d& X) {
   return Box{X * b.X, b.half};
 }
 
+/// The link boxes of an arm case at configuration q, in the world frame: the
+/// planar chain's forward kinematics (joint i turns about z at the far end
+/// of link i - 1; link i a box from its joint along its own x).
+std::vector<Box> armBoxes(const Case& c, const std::vector<double>& q) {
+  std::vector<Box> boxes;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  double angle = 0.0;
+  for (std::size_t i = 0; i < c.arm_lengths.size(); ++i) {
+    const double length = c.arm_lengths[i];
+    angle += q[i];
+    const Eigen::Vector3d dir(std::cos(angle), std::sin(angle), 0.0);
+    Box b;
+    b.X = pose(yaw(angle), origin + 0.5 * length * dir);
+    b.half = Eigen::Vector3d(0.5 * length, c.arm_half_width, c.arm_half_height);
+    boxes.push_back(b);
+    origin += length * dir;
+  }
+  return boxes;
+}
+
+/// A bound of how fast (per unit of t) any point of the arm moves on the
+/// edge q0 -> q1: joint i moves the points beyond it at most |dq_i| times
+/// their distance from it, at most the links' lengths from it on plus the
+/// far corner's offset.
+double armSpeed(const Case& c, const std::vector<double>& q0, const std::vector<double>& q1) {
+  const double corner = std::hypot(c.arm_half_width, c.arm_half_height);
+  double speed = 0.0;
+  for (std::size_t i = 0; i < c.arm_lengths.size(); ++i) {
+    double reach = corner;
+    for (std::size_t k = i; k < c.arm_lengths.size(); ++k) reach += c.arm_lengths[k];
+    speed += std::abs(q1[i] - q0[i]) * reach;
+  }
+  return speed;
+}
+
+/// The planar arm of three links turning one joint 30 to 120 degrees (the
+/// others fixed) past a small box: 60% of the boxes on a point of a link
+/// beyond the joint at a t in [0.3, 0.7] of the edge, 20% beyond the arm's
+/// reach, 20% anywhere within it. One edge per case, the start free.
+std::vector<Case> armRotatingLink(Rng& rng, int edges, const std::string& family) {
+  std::vector<Case> out;
+  for (int e = 0, tries = 0; e < edges && tries < kMaxTries * edges; ++tries) {
+    Case c;
+    c.family = family;
+    c.kind = planning::SpaceKind::kR3;  // unused: arm cases live in joint space
+    c.bounds = around(Eigen::Vector3d::Zero(), 5.0);
+    const double l3 = uniform(rng, 0.4, 1.0);
+    const double l2 = uniform(rng, 0.4, 1.0);
+    const double l1 = uniform(rng, 0.4, 1.0);
+    c.arm_lengths = {l1, l2, l3};
+    c.arm_half_width = uniform(rng, 0.02, 0.06);
+    c.arm_half_height = 0.05;
+    std::vector<double> q0(3);
+    for (double& v : q0) v = uniform(rng, -1.2, 1.2);
+    const int joint = std::uniform_int_distribution<int>(0, 2)(rng);
+    const double theta = uniform(rng, 30.0, 120.0) * kPi / 180.0;
+    double sign = uniform(rng, 0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    if (std::abs(q0[static_cast<std::size_t>(joint)] + sign * theta) > kPi) sign = -sign;
+    std::vector<double> q1 = q0;
+    q1[static_cast<std::size_t>(joint)] += sign * theta;
+    const double reach = l1 + l2 + l3;
+    const double kind = uniform(rng, 0.0, 1.0);
+    const double h = uniform(rng, 0.03, 0.1);
+    Eigen::Vector3d centre;
+    if (kind < 0.6) {
+      const double tm = uniform(rng, 0.3, 0.7);
+      std::vector<double> qm(3);
+      for (std::size_t v = 0; v < 3; ++v) qm[v] = q0[v] + tm * (q1[v] - q0[v]);
+      const auto link = std::uniform_int_distribution<int>(joint, 2)(rng);
+      const Box b = armBoxes(c, qm)[static_cast<std::size_t>(link)];
+      const double along = uniform(rng, 0.4, 1.0);
+      centre = b.X * Eigen::Vector3d(along * b.half.x(), 0.0, 0.0);
+    } else if (kind < 0.8) {
+      const double angle = uniform(rng, -kPi, kPi);
+      const double r = reach + 2.0 * h + uniform(rng, 0.05, 0.5);
+      centre = Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), 0.0);
+    } else {
+      const double angle = uniform(rng, -kPi, kPi);
+      const double r = uniform(rng, 0.2, reach);
+      centre = Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), 0.0);
+    }
+    Box obstacle;
+    const double spin = uniform(rng, -kPi, kPi);
+    obstacle.X = pose(yaw(spin), centre);
+    obstacle.half = Eigen::Vector3d(h, h, 0.1);
+    c.world.push_back(obstacle);
+    c.arm_edges.emplace_back(q0, q1);
+    if (!(detail::armGap(c, q0) > 0.0)) continue;
+    out.push_back(std::move(c));
+    ++e;
+  }
+  return out;
+}
+
 /// The 15 separating axes of two boxes (unit; the degenerate cross products
 /// of parallel edges left out).
 std::vector<Eigen::Vector3d> axes(const Box& a, const Box& b) {
@@ -390,12 +485,23 @@ double sceneGap(const Case& c, const Eigen::Isometry3d& X_WR) {
   }
   return gap;
 }
+
+double armGap(const Case& c, const std::vector<double>& q) {
+  const std::vector<Box> links = armBoxes(c, q);
+  double gap = kInf;
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    for (const Box& b : c.world) gap = std::min(gap, boxGap(links[i], b));
+    for (std::size_t k = i + 2; k < links.size(); ++k) gap = std::min(gap, boxGap(links[i], links[k]));
+    if (gap <= 0.0) return gap;
+  }
+  return gap;
+}
 }  // namespace detail
 
 const std::vector<std::string>& familyNames() {
   static const std::vector<std::string> names = {
-      "translating-boxes", "obb-hierarchy", "rotating-link-arc", "screw-vs-interpolated", "thin-wall",
-      "far-from-origin",   "grazing"};
+      "translating-boxes", "obb-hierarchy",   "rotating-link-arc", "screw-vs-interpolated",
+      "thin-wall",         "far-from-origin", "grazing",           "arm-rotating-link"};
   return names;
 }
 
@@ -411,6 +517,7 @@ std::vector<Case> makeFamily(const std::string& family, std::uint64_t seed, int 
   if (family == "screw-vs-interpolated") return screwVsInterpolated(rng, edges);
   if (family == "thin-wall") return thinWall(rng, edges);
   if (family == "grazing") return grazing(rng, edges);
+  if (family == "arm-rotating-link") return armRotatingLink(rng, edges, family);
   // far-from-origin: half translating boxes, half rotating links, at 1e6.
   std::vector<Case> out = translatingBoxes(rng, edges / 2, Eigen::Vector3d::Constant(1e6), 1, false, family);
   for (Case& c : rotatingLinkArc(rng, edges - edges / 2, Eigen::Vector3d(1e6, 1e6, 0.0), family)) {
@@ -421,6 +528,18 @@ std::vector<Case> makeFamily(const std::string& family, std::uint64_t seed, int 
 
 Scene buildScene(const Case& c) {
   Scene s;
+  if (c.isArm()) {
+    std::vector<scene::Piece> world;
+    for (const Box& b : c.world) world.push_back(planning::examples::convexPiece(corners(b), "world box"));
+    s.world = std::make_shared<scene::World>(std::move(world), c.family + " world");
+    const planning::examples::PlanarArm arm =
+        planning::examples::planarArm(c.arm_lengths, c.arm_half_width, c.arm_half_height);
+    std::vector<int> group;
+    for (int v = 0; v < arm.model->numVariables(); ++v) group.push_back(v);
+    s.arm_space = planning::ArmSpace::make(arm.model, group);
+    s.arm = std::make_shared<planning::ArmScene>(arm.model, s.world, arm.filter);
+    return s;
+  }
   s.space = planning::PlanningSpace::make(c.kind, c.bounds, 0.0, c.q_fixed);
   std::vector<scene::Piece> robot, world;
   for (const Box& b : c.robot) robot.push_back(planning::examples::convexPiece(corners(b), "robot box"));
@@ -442,7 +561,37 @@ ompl::base::State* makeState(const Scene& s, const Eigen::Isometry3d& X) {
   return state;
 }
 
+std::pair<ompl::base::State*, ompl::base::State*> makeEdgeStates(const Case& c, const Scene& s, int edge) {
+  const auto e = static_cast<std::size_t>(edge);
+  if (!c.isArm()) return {makeState(s, c.edges[e].first), makeState(s, c.edges[e].second)};
+  const ompl::base::StateSpacePtr& space = s.arm_space->stateSpace();
+  ompl::base::State* a = space->allocState();
+  ompl::base::State* b = space->allocState();
+  s.arm_space->setState(a, c.arm_edges[e].first.data());
+  s.arm_space->setState(b, c.arm_edges[e].second.data());
+  return {a, b};
+}
+
+double startGap(const Case& c, int edge) {
+  const auto e = static_cast<std::size_t>(edge);
+  return c.isArm() ? detail::armGap(c, c.arm_edges[e].first) : detail::sceneGap(c, c.edges[e].first);
+}
+
 Truth groundTruth(const Case& c, const Scene& s, int edge, double min_step) {
+  if (c.isArm()) {
+    // Joint-space edges: q(t) = q0 + t (q1 - q0) (OMPL's interpolation of a
+    // RealVector space); relative speeds of two links at most twice a point's.
+    const auto& [q0, q1] = c.arm_edges[static_cast<std::size_t>(edge)];
+    std::vector<double> q(q0.size());
+    const auto gap = [&](double t) {
+      for (std::size_t v = 0; v < q.size(); ++v) q[v] = q0[v] + t * (q1[v] - q0[v]);
+      return detail::armGap(c, q);
+    };
+    Truth truth;
+    truth.dense_contact = planning::denseFirstContact(gap, 2.0 * armSpeed(c, q0, q1), min_step);
+    truth.collides = truth.dense_contact < kInf;
+    return truth;
+  }
   const auto& [X1, X2] = c.edges[static_cast<std::size_t>(edge)];
   const ompl::base::StateSpacePtr& space = s.space->stateSpace();
   ompl::base::State* a = makeState(s, X1);

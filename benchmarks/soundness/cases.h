@@ -1,6 +1,7 @@
 // The soundness suite: named, seeded families of edges where collision
 // checkers are known to go wrong, each edge with an independent ground truth,
-// and the four checkers it compares (mdd, fcl, fcl-continuous, hull-cast).
+// and the checkers it compares (mdd, fcl, fcl-continuous, hull-cast; for the
+// arm family mdd, fcl and hull-cast, its arm checkers).
 // Shared by the runner (run_soundness.cpp, scripts/run-soundness.sh) and the
 // tests (tests/benchmarks/soundness).
 //
@@ -34,6 +35,15 @@
 //   far-from-origin        translating boxes and rotating links at 1e6.
 //   grazing                R^3: a box sliding along a face of another at a
 //                          gap of +-1e-6 of the bodies' size (half free).
+//   arm-rotating-link      a planar arm of three box links
+//                          (examples::planarArm) turning one joint 30 to 120
+//                          degrees past a small box that mostly sits on a
+//                          link's path in mid-edge (inside the arc, outside the
+//                          hull of the end poses). Joint-space edges; the
+//                          ground truth is the dense check on the links'
+//                          boxes (forward kinematics of the planar chain, in
+//                          this file) against the world and each other
+//                          (the non-adjacent pairs, as the arm checkers).
 #pragma once
 
 #include <ompl/base/SpaceInformation.h>
@@ -47,6 +57,9 @@
 #include <utility>
 #include <vector>
 
+#include "mddual/planning/arm_scene.h"
+#include "mddual/planning/arm_space.h"
+#include "mddual/planning/dense_contact.h"
 #include "mddual/planning/state_space.h"
 #include "mddual/scene/scene.h"
 
@@ -70,6 +83,15 @@ struct Case {
   std::vector<Box> world;                                       ///< world frame
   bool world_triangles = false;                                 ///< world boxes as 12 triangles each (mesh pieces)
   std::vector<std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> edges;
+  /// Arm cases: the planar arm's link lengths (empty for a rigid body; then
+  /// `robot` is unused), its links' half width and height, and its edges
+  /// (full configurations at both ends) instead of `edges`.
+  std::vector<double> arm_lengths;
+  double arm_half_width = 0.0;
+  double arm_half_height = 0.0;
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> arm_edges;
+  bool isArm() const { return !arm_lengths.empty(); }
+  int numEdges() const { return static_cast<int>(isArm() ? arm_edges.size() : edges.size()); }
 };
 
 /// The family names, in the order of the results table.
@@ -79,15 +101,23 @@ const std::vector<std::string>& familyNames();
 /// an unknown name.
 std::vector<Case> makeFamily(const std::string& family, std::uint64_t seed, int edges);
 
-/// A case's planning objects: the space, the robot and the world as pieces.
+/// A case's planning objects: the space, the robot and the world as pieces
+/// (rigid cases), or the arm's space and scene (arm cases; `world` set too).
 struct Scene {
   planning::PlanningSpacePtr space;
   std::shared_ptr<const scene::RigidBody> robot;
   std::shared_ptr<const scene::World> world;
+  planning::ArmSpacePtr arm_space;
+  std::shared_ptr<const planning::ArmScene> arm;
 };
 Scene buildScene(const Case& c);
 /// The OMPL state of the space at pose X (allocated by the space; free it).
 ompl::base::State* makeState(const Scene& s, const Eigen::Isometry3d& X);
+/// The states of edge `edge`'s two ends (rigid or arm; free them with the
+/// scene's state space).
+std::pair<ompl::base::State*, ompl::base::State*> makeEdgeStates(const Case& c, const Scene& s, int edge);
+/// The smallest separating-axis gap of the edge's start (> 0: free).
+double startGap(const Case& c, int edge);
 
 /// The ground truth of one edge (see the file comment).
 struct Truth {
@@ -112,7 +142,12 @@ double screwFirstContact(const Case& c, int edge, double min_step = 1e-5);
 
 /// The checkers compared: "mdd", "fcl", "fcl-continuous", "hull-cast".
 const std::vector<std::string>& checkerNames();
-/// A SpaceInformation whose motion validator is `checker`'s (see run-soundness.sh).
+/// The checkers of a family: checkerNames(), or for the arm family the arm
+/// checkers "mdd", "fcl", "hull-cast" (there is no continuous FCL arm check).
+const std::vector<std::string>& checkerNames(const std::string& family);
+/// A SpaceInformation whose motion validator is `checker`'s (see
+/// run-soundness.sh), of the case's kind (rigid or arm); throws
+/// InvalidInputError for a checker the kind has not.
 ompl::base::SpaceInformationPtr makeChecker(const std::string& checker, const Scene& s);
 /// checkMotion(s1, s2) of `si` on every edge: its verdicts and times (seconds).
 struct CheckerRun {
@@ -126,18 +161,14 @@ CheckerRun runChecker(const ompl::base::SpaceInformation& si, const Case& c, con
 namespace detail {
 /// The smallest boxGap between the robot at X_WR and the world.
 double sceneGap(const Case& c, const Eigen::Isometry3d& X_WR);
+/// The smallest boxGap of an arm case at configuration q: each link box
+/// against the world boxes and the non-adjacent link boxes.
+double armGap(const Case& c, const std::vector<double>& q);
 }  // namespace detail
 
 template <class PoseFn>
 double denseFirstContact(const Case& c, const PoseFn& pose, double speed, double min_step) {
-  double t = 0.0;
-  for (;;) {
-    const double gap = detail::sceneGap(c, pose(t));
-    if (gap <= 0.0) return t;
-    if (t >= 1.0) return kInf;
-    const double advance = speed > 0.0 ? gap / speed : kInf;
-    t = std::min(1.0, t + std::max(advance, min_step));
-  }
+  return planning::denseFirstContact([&](double t) { return detail::sceneGap(c, pose(t)); }, speed, min_step);
 }
 
 }  // namespace mddual::soundness

@@ -1,5 +1,6 @@
-// The four checkers of the soundness suite, each on its own SpaceInformation
-// over the case's space.
+// The checkers of the soundness suite, each on its own SpaceInformation over
+// the case's space: four for rigid bodies, three for the arm family (the arm
+// checkers of the same names as `mddual bench` installs them).
 #include <ompl/base/DiscreteMotionValidator.h>
 
 #include <chrono>
@@ -7,6 +8,7 @@
 
 #include "cases.h"
 #include "mddual/error.h"
+#include "mddual/planning/arm_checkers.h"
 #include "mddual/planning/fcl_checkers.h"
 #include "mddual/planning/hull_cast_checkers.h"
 #include "mddual/planning/mdd_checkers.h"
@@ -21,7 +23,37 @@ const std::vector<std::string>& checkerNames() {
   return names;
 }
 
+const std::vector<std::string>& checkerNames(const std::string& family) {
+  static const std::vector<std::string> arm = {"mdd", "fcl", "hull-cast"};
+  return family == "arm-rotating-link" ? arm : checkerNames();
+}
+
+namespace {
+
+ob::SpaceInformationPtr makeArmChecker(const std::string& checker, const Scene& s) {
+  auto si = std::make_shared<ob::SpaceInformation>(s.arm_space->stateSpace());
+  if (checker == "mdd") {
+    useExactChecking(si, s.arm_space, s.arm);
+  } else {
+    si->setStateValidityChecker(
+        std::make_shared<FclArmStateValidityChecker>(si, s.arm_space, std::make_shared<FclArmScene>(s.arm)));
+    if (checker == "fcl") {
+      si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
+    } else if (checker == "hull-cast") {
+      si->setMotionValidator(
+          std::make_shared<ArmHullCastMotionValidator>(si, s.arm_space, std::make_shared<ArmHullCastScene>(s.arm)));
+    } else {
+      throw InvalidInputError("soundness: unknown arm checker '" + checker + "'");
+    }
+  }
+  si->setup();
+  return si;
+}
+
+}  // namespace
+
 ob::SpaceInformationPtr makeChecker(const std::string& checker, const Scene& s) {
+  if (s.arm) return makeArmChecker(checker, s);
   auto si = std::make_shared<ob::SpaceInformation>(s.space->stateSpace());
   if (checker == "mdd") {
     auto scene = std::make_shared<MddScene>(s.robot, s.world);
@@ -50,9 +82,10 @@ CheckerRun runChecker(const ob::SpaceInformation& si, const Case& c, const Scene
   CheckerRun run;
   const ob::MotionValidatorPtr& motion = si.getMotionValidator();
   std::vector<ob::State*> states;
-  for (const auto& [X1, X2] : c.edges) {
-    states.push_back(makeState(s, X1));
-    states.push_back(makeState(s, X2));
+  for (int e = 0; e < c.numEdges(); ++e) {
+    const auto [a, b] = makeEdgeStates(c, s, e);
+    states.push_back(a);
+    states.push_back(b);
   }
   // An untimed pass first: what a checker builds on first use (the MDD
   // scene's enlarged pieces for rotating edges) is paid once per scene in a
@@ -67,7 +100,7 @@ CheckerRun runChecker(const ob::SpaceInformation& si, const Case& c, const Scene
     run.valid.push_back(valid);
     run.seconds.push_back(elapsed.count());
   }
-  for (ob::State* state : states) s.space->stateSpace()->freeState(state);
+  for (ob::State* state : states) si.freeState(state);
   return run;
 }
 

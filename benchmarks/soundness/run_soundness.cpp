@@ -75,8 +75,8 @@ int main(int argc, char** argv) {
     for (const Case& c : cases) {
       const Scene scene = buildScene(c);
       std::vector<Truth> truths;
-      for (int e = 0; e < static_cast<int>(c.edges.size()); ++e) truths.push_back(groundTruth(c, scene, e));
-      for (const std::string& checker : checkerNames()) {
+      for (int e = 0; e < c.numEdges(); ++e) truths.push_back(groundTruth(c, scene, e));
+      for (const std::string& checker : checkerNames(family)) {
         const CheckerRun run = runChecker(*makeChecker(checker, scene), c, scene);
         Tally& t = tallies[checker];
         for (std::size_t e = 0; e < truths.size(); ++e) {
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
         }
       }
     }
-    for (const std::string& checker : checkerNames()) {
+    for (const std::string& checker : checkerNames(family)) {
       const Tally& t = tallies[checker];
       char time[32];
       std::snprintf(time, sizeof time, "%.3g", median(t.seconds) * 1e6);

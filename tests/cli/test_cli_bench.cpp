@@ -4,6 +4,7 @@
 // of one unsharded run; bad configs and flags fail with one clear line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,16 @@ namespace mddual::cli_test {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The default checkers of a cfg: the built-in ones, and the Bullet peer's
+// hull-cast when the CLI is built with Bullet.
+#ifdef MDDUAL_HAVE_BULLET
+const std::vector<std::string> kCheckers = {"mdd", "fcl", "fcl-continuous", "hull-cast"};
+const std::string kKnownCheckers = "mdd, fcl, fcl-continuous, hull-cast";
+#else
+const std::vector<std::string> kCheckers = {"mdd", "fcl", "fcl-continuous"};
+const std::string kKnownCheckers = "mdd, fcl, fcl-continuous";
+#endif
 
 /// Runs a shell command, returns its standard output (fails the test on a
 /// non-zero status).
@@ -94,8 +105,8 @@ TEST(CliBench, EndToEnd) {
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
 
   // Logs, database, plot, summary.
-  for (const char* checker : {"mdd", "fcl", "fcl-continuous"}) {
-    EXPECT_TRUE(fs::is_regular_file(out / ("tiny-" + std::string(checker) + ".log"))) << checker;
+  for (const std::string& checker : kCheckers) {
+    EXPECT_TRUE(fs::is_regular_file(out / ("tiny-" + checker + ".log"))) << checker;
   }
   const fs::path db = out / "bench.db";
   ASSERT_TRUE(fs::is_regular_file(db));
@@ -114,12 +125,15 @@ TEST(CliBench, EndToEnd) {
   EXPECT_NE(run.err.find("bench: tiny | fcl-continuous | mdd_rrtconnect: 2 runs,"), std::string::npos) << run.err;
   EXPECT_EQ(run.err.find('\r'), std::string::npos);
 
-  // The database: 3 experiments with their parameters, 12 runs, the
-  // verification properties on every run and consistent.
-  EXPECT_EQ(sql(db, "select name, config, checker, shard from experiments order by name"),
-            (std::vector<std::string>{"tiny-fcl|tiny|fcl|0/1", "tiny-fcl-continuous|tiny|fcl-continuous|0/1",
-                                      "tiny-mdd|tiny|mdd|0/1"}));
-  EXPECT_EQ(sql(db, "select count(*) from runs"), std::vector<std::string>{"12"});
+  // The database: one experiment per checker with its parameters, 4 runs
+  // each, the verification properties on every run and consistent.
+  std::vector<std::string> experiments;
+  for (const std::string& c : kCheckers) experiments.push_back("tiny-" + c + "|tiny|" + c + "|0/1");
+  std::sort(experiments.begin(), experiments.end(), [](const std::string& a, const std::string& b) {
+    return a.substr(0, a.find('|')) < b.substr(0, b.find('|'));  // by name, as the query
+  });
+  EXPECT_EQ(sql(db, "select name, config, checker, shard from experiments order by name"), experiments);
+  EXPECT_EQ(sql(db, "select count(*) from runs"), std::vector<std::string>{std::to_string(4 * kCheckers.size())});
   EXPECT_EQ(sql(db,
                 "select count(*) from runs where verified is null or invalid_solution is null or "
                 "verification_time is null or state_checks is null or checking_time is null or run_index is null"),
@@ -143,7 +157,7 @@ TEST(CliBench, EndToEnd) {
                           "select p.name, e.checker, sum(r.invalid_solution), sum(r.verified), count(*) from runs r "
                           "join experiments e on r.experimentid = e.id join plannerConfigs p on r.plannerid = p.id "
                           "group by p.name, e.checker");
-  ASSERT_EQ(groups.size(), 6u);
+  ASSERT_EQ(groups.size(), 2 * kCheckers.size());
   for (const std::string& g : groups) {
     std::vector<std::string> f;
     std::string cell;
@@ -168,6 +182,30 @@ TEST(CliBench, EndToEnd) {
     EXPECT_EQ(line.substr(before + 3, last - before - 3), f[2]) << line;
   }
 }
+
+#ifdef MDDUAL_HAVE_BULLET
+// The Bullet peer by name, beside mdd and fcl: a log, runs in the database,
+// a summary row, and the help lists it.
+TEST(CliBench, RunsTheHullCastPeer) {
+  TempDir dir;
+  const fs::path cfg = testing::writeTinyConfig(fs::path(dir.path()) / "cfg");
+  const fs::path out = fs::path(dir.path()) / "out";
+  const CliRun run = runCli({"bench", cfg.string(), "--output", out.string(), "--checkers", "mdd,fcl,hull-cast",
+                             "--planners", "rrtconnect", "--runs", "1", "--time-limit", "300"});
+  ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
+  EXPECT_TRUE(fs::is_regular_file(out / "tiny-hull-cast.log"));
+  EXPECT_EQ(sql(out / "bench.db", "select count(*) from runs"), std::vector<std::string>{"3"});
+  // Translation only: the cast is exact, its solution verifies.
+  EXPECT_EQ(sql(out / "bench.db",
+                "select r.verified from runs r join experiments e on r.experimentid = e.id "
+                "where e.checker = 'hull-cast'"),
+            std::vector<std::string>{"1"});
+  EXPECT_NE(run.out.find("| tiny | rrtconnect | hull-cast | 1 | 100% |"), std::string::npos) << run.out;
+  const CliRun help = runCli({"bench", "--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("hull-cast"), std::string::npos) << help.out;
+}
+#endif
 
 TEST(CliBench, ShardsMergeToTheUnshardedRuns) {
   TempDir dir;
@@ -244,7 +282,7 @@ TEST(CliBench, BadConfigsAndFlagsFailWithOneClearLine) {
       {{(base / "missing.cfg").string()}, "missing.cfg"},
       {{bad_line}, "tiny.cfg:26"},
       {{bad_planner}, "tiny.cfg:34: unknown planner 'foo'"},
-      {{cfg, "--checkers", "foo"}, "--checkers: unknown checker 'foo' (known: mdd, fcl, fcl-continuous)"},
+      {{cfg, "--checkers", "foo"}, "--checkers: unknown checker 'foo' (known: " + kKnownCheckers + ")"},
       {{cfg, "--checkers", "mdd,,fcl"}, "--checkers: empty checker name"},
       {{cfg, "--shard", "3/2"}, "--shard '3/2': expected I/N with 0 <= I < N"},
       {{cfg, "--shard", "x"}, "--shard 'x'"},

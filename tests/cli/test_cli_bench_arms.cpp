@@ -44,6 +44,14 @@ std::string sqlCount(const fs::path& db, const std::string& query) {
   return out;
 }
 
+// The default arm checkers: the built-in ones, and the Bullet peer's
+// hull-cast when the CLI is built with Bullet.
+#ifdef MDDUAL_HAVE_BULLET
+const std::vector<std::string> kArmCheckers = {"mdd", "fcl", "fcl-fine", "hull-cast"};
+#else
+const std::vector<std::string> kArmCheckers = {"mdd", "fcl", "fcl-fine"};
+#endif
+
 TEST(CliBenchArms, PlansAProblemDirectoryWithEveryChecker) {
   TempDir dir;
   const fs::path problems = copyProblems(fs::path(dir.path()) / "shelf", "bookshelf_thin");
@@ -53,16 +61,16 @@ TEST(CliBenchArms, PlansAProblemDirectoryWithEveryChecker) {
                              "--time-limit", "5", "--output", out.string()});
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   for (const char* problem : {"0001", "0002"}) {
-    for (const char* checker : {"mdd", "fcl", "fcl-fine"}) {
+    for (const std::string& checker : kArmCheckers) {
       EXPECT_TRUE(fs::is_regular_file(out / ("shelf-" + std::string(problem) + "-" + checker + ".log")))
           << problem << " " << checker;
     }
   }
   const fs::path db = out / "bench.db";
   ASSERT_TRUE(fs::is_regular_file(db));
-  EXPECT_EQ(sqlCount(db, "select count(*) from runs"), "6");
+  EXPECT_EQ(sqlCount(db, "select count(*) from runs"), std::to_string(2 * kArmCheckers.size()));
   EXPECT_EQ(sqlCount(db, "select count(distinct config) from experiments"), "1");
-  EXPECT_EQ(sqlCount(db, "select count(distinct checker) from experiments"), "3");
+  EXPECT_EQ(sqlCount(db, "select count(distinct checker) from experiments"), std::to_string(kArmCheckers.size()));
   // Every exact solution is either verified or invalid; mdd's never invalid.
   EXPECT_EQ(sqlCount(db,
                      "select count(*) from runs where (solved = 1 and (approximate_solution is null or "

@@ -8,6 +8,7 @@
 #include "constants.h"
 #include "mddual/error.h"
 #include "mddual/generators.h"
+#include "mddual/scene/loaders.h"
 
 namespace mddual::planning::examples {
 namespace {
@@ -342,6 +343,40 @@ ExampleScene thinWallScene(double thickness) {
 
 PlanningSpacePtr makeSpace(const ExampleScene& scene, SpaceKind kind) {
   return PlanningSpace::make(kind, scene.bounds);
+}
+
+PlanarArm planarArm(const std::vector<double>& lengths, double half_width, double half_height) {
+  if (lengths.empty()) throw InvalidInputError("planarArm: no link");
+  if (!(half_width > 0.0) || !(half_height > 0.0)) throw InvalidInputError("planarArm: sizes must be positive");
+  std::vector<scene::Link> links(lengths.size() + 1);
+  std::vector<scene::Joint> joints(lengths.size());
+  links[0].name = "base";
+  for (std::size_t i = 0; i < lengths.size(); ++i) {
+    const double length = lengths[i];
+    if (!(length > 0.0)) throw InvalidInputError("planarArm: link lengths must be positive");
+    scene::Joint& j = joints[i];
+    j.name = "joint" + std::to_string(i + 1);
+    j.type = scene::JointType::kRevolute;
+    j.parent_link = static_cast<int>(i);
+    j.child_link = static_cast<int>(i + 1);
+    j.X_PJ.translation() = Eigen::Vector3d(i == 0 ? 0.0 : lengths[i - 1], 0.0, 0.0);
+    j.axis_J = Eigen::Vector3d::UnitZ();
+    j.lower = -kPi;
+    j.upper = kPi;
+    scene::Link& l = links[i + 1];
+    l.name = "link" + std::to_string(i + 1);
+    l.parent_joint = static_cast<int>(i);
+    links[i].child_joints.push_back(static_cast<int>(i));
+    Eigen::Isometry3d X_LB = Eigen::Isometry3d::Identity();
+    X_LB.translation() = Eigen::Vector3d(0.5 * length, 0.0, 0.0);
+    l.pieces.push_back(scene::boxPiece(Eigen::Vector3d(length, 2.0 * half_width, 2.0 * half_height), X_LB, l.name));
+  }
+  PlanarArm arm;
+  auto model = std::make_shared<const scene::RobotModel>("planar_arm", std::move(links), std::move(joints));
+  arm.filter = scene::AllowedCollisions(*model);
+  for (int k = 0; k + 1 < model->numLinks(); ++k) arm.filter.allow(k, k + 1);
+  arm.model = std::move(model);
+  return arm;
 }
 
 }  // namespace mddual::planning::examples

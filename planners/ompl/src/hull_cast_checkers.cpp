@@ -1,6 +1,7 @@
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 
+#include <string>
 #include <vector>
 
 #include "checker_arguments.h"
@@ -22,9 +23,9 @@ namespace {
 struct LocalHull {
   btConvexHullShape shape;
   btTransform X_W = btTransform::getIdentity();
+  Eigen::AlignedBox3d box;  ///< of the points (world frame)
 
   explicit LocalHull(const std::vector<Eigen::Vector3d>& points) {
-    Eigen::AlignedBox3d box;
     for (const Eigen::Vector3d& p : points) box.extend(p);
     const Eigen::Vector3d c = box.center();
     for (const Eigen::Vector3d& p : points) {
@@ -36,6 +37,23 @@ struct LocalHull {
     X_W.setOrigin(btVector3(c.x(), c.y(), c.z()));
   }
 };
+
+/// Whether two hulls overlap or touch (Bullet's GJK/EPA).
+bool overlap(const LocalHull& a, const LocalHull& b) {
+  btGjkEpaSolver2::sResults result;
+  const btVector3 guess = b.X_W.getOrigin() - a.X_W.getOrigin();
+  return btGjkEpaSolver2::Penetration(&a.shape, a.X_W, &b.shape, b.X_W, guess, result);
+}
+
+/// The hull of `vertices` (frame L) placed at X_a and at X_b.
+std::unique_ptr<LocalHull> sweptHull(const std::vector<Eigen::Vector3d>& vertices, const Eigen::Isometry3d& X_a,
+                                     const Eigen::Isometry3d& X_b) {
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(2 * vertices.size());
+  for (const Eigen::Vector3d& v : vertices) points.push_back(X_a * v);
+  for (const Eigen::Vector3d& v : vertices) points.push_back(X_b * v);
+  return std::make_unique<LocalHull>(points);
+}
 
 }  // namespace
 
@@ -61,24 +79,14 @@ HullCastScene::~HullCastScene() = default;
 bool HullCastScene::castCollides(const Eigen::Isometry3d& X_a, const Eigen::Isometry3d& X_b, int* pair_queries) const {
   int queries = 0;
   bool hit = false;
-  std::vector<Eigen::Vector3d> points;
   std::vector<int> candidates;
   for (const scene::Piece& piece : impl_->robot->pieces()) {
-    const std::vector<Eigen::Vector3d>& vertices = piece.polytope.vertices();
-    points.clear();
-    for (const Eigen::Vector3d& v : vertices) points.push_back(X_a * v);
-    for (const Eigen::Vector3d& v : vertices) points.push_back(X_b * v);
-    const LocalHull hull(points);
-    Eigen::AlignedBox3d box;
-    for (const Eigen::Vector3d& p : points) box.extend(p);
+    const std::unique_ptr<LocalHull> hull = sweptHull(piece.polytope.vertices(), X_a, X_b);
     candidates.clear();
-    impl_->world->candidates(box, &candidates);
+    impl_->world->candidates(hull->box, &candidates);
     for (int index : candidates) {
-      const LocalHull& other = *impl_->world_hulls[static_cast<std::size_t>(index)];
-      btGjkEpaSolver2::sResults result;
-      const btVector3 guess = other.X_W.getOrigin() - hull.X_W.getOrigin();
       ++queries;
-      if (btGjkEpaSolver2::Penetration(&hull.shape, hull.X_W, &other.shape, other.X_W, guess, result)) {
+      if (overlap(*hull, *impl_->world_hulls[static_cast<std::size_t>(index)])) {
         hit = true;
         break;
       }
@@ -87,6 +95,133 @@ bool HullCastScene::castCollides(const Eigen::Isometry3d& X_a, const Eigen::Isom
   }
   if (pair_queries) *pair_queries = queries;
   return hit;
+}
+
+// ---- ArmHullCastScene ----------------------------------------------------------
+
+struct ArmHullCastScene::Impl {
+  std::vector<std::unique_ptr<LocalHull>> world_hulls;  ///< one per world piece, same index
+  std::vector<int> world_links;                         ///< links checked against the world
+};
+
+ArmHullCastScene::ArmHullCastScene(std::shared_ptr<const ArmScene> scene)
+    : scene_(std::move(scene)), impl_(std::make_unique<Impl>()) {
+  if (!scene_) throw InvalidInputError("ArmHullCastScene: the scene is null");
+  const scene::RobotModel& m = scene_->model();
+  for (const scene::Piece& piece : scene_->world().pieces()) {
+    impl_->world_hulls.push_back(std::make_unique<LocalHull>(piece.polytope.vertices()));
+  }
+  for (int k = 0; k < m.numLinks(); ++k) {
+    // The pairs ArmScene checks against the world (FclArmScene's too).
+    if (!m.link(k).pieces.empty() && !impl_->world_hulls.empty() && !scene_->filter().allowedWithWorld(k)) {
+      impl_->world_links.push_back(k);
+    }
+  }
+}
+
+ArmHullCastScene::~ArmHullCastScene() = default;
+
+bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmContact* which, int* pair_queries) const {
+  const scene::RobotModel& m = scene_->model();
+  std::vector<Eigen::Isometry3d> X0, X1;
+  scene_->linkPoses(q0, &X0);
+  scene_->linkPoses(q1, &X1);
+  // Each link's swept piece hulls, made when a pair first needs them.
+  std::vector<std::vector<std::unique_ptr<LocalHull>>> swept(static_cast<std::size_t>(m.numLinks()));
+  const auto hullsOf = [&](int k) -> const std::vector<std::unique_ptr<LocalHull>>& {
+    auto& hulls = swept[static_cast<std::size_t>(k)];
+    if (hulls.empty()) {
+      for (const scene::Piece& piece : m.link(k).pieces) {
+        hulls.push_back(
+            sweptHull(piece.polytope.vertices(), X0[static_cast<std::size_t>(k)], X1[static_cast<std::size_t>(k)]));
+      }
+    }
+    return hulls;
+  };
+  int queries = 0;
+  ArmContact contact;
+  bool hit = false;
+  std::vector<int> candidates;
+  for (int k : impl_->world_links) {
+    for (const auto& hull : hullsOf(k)) {
+      candidates.clear();
+      scene_->world().candidates(hull->box, &candidates);
+      for (int index : candidates) {
+        ++queries;
+        if (overlap(*hull, *impl_->world_hulls[static_cast<std::size_t>(index)])) {
+          contact.link = k;
+          contact.world_piece = index;
+          hit = true;
+          break;
+        }
+      }
+      if (hit) break;
+    }
+    if (hit) break;
+  }
+  for (std::size_t p = 0; !hit && p < scene_->selfPairs().size(); ++p) {
+    const auto [k, l] = scene_->selfPairs()[p];
+    for (const auto& a : hullsOf(k)) {
+      for (const auto& b : hullsOf(l)) {
+        if (!a->box.intersects(b->box)) continue;
+        ++queries;
+        if (overlap(*a, *b)) {
+          contact.link = k;
+          contact.other_link = l;
+          hit = true;
+          break;
+        }
+      }
+      if (hit) break;
+    }
+  }
+  if (which) *which = contact;
+  if (pair_queries) *pair_queries = queries;
+  return hit;
+}
+
+// ---- ArmHullCastMotionValidator ---------------------------------------------------
+
+ArmHullCastMotionValidator::ArmHullCastMotionValidator(const ob::SpaceInformationPtr& si, ArmSpacePtr space,
+                                                       std::shared_ptr<const ArmHullCastScene> scene)
+    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
+  const std::string who = "ArmHullCastMotionValidator";
+  if (!si) throw InvalidInputError(who + ": the SpaceInformation is null");
+  if (!space_) throw InvalidInputError(who + ": the ArmSpace is null");
+  if (!scene_) throw InvalidInputError(who + ": the scene is null");
+  if (si->getStateSpace() != space_->stateSpace()) {
+    throw InvalidInputError(who + ": the SpaceInformation's state space is not the ArmSpace's");
+  }
+  if (&scene_->scene().model() != &space_->model()) {
+    throw InvalidInputError(who + ": the ArmSpace and the scene have different robot models");
+  }
+}
+
+bool ArmHullCastMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
+  if (s1 == nullptr || s2 == nullptr) throw InvalidInputError("ArmHullCastMotionValidator: a null state");
+  CheckerCounters::Timer timer(counters_);
+  counters_.addMotionCheck();
+  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
+  if (valid) {
+    const std::size_t n = space_->fixedConfiguration().size();
+    std::vector<double> q0(n), q1(n);
+    space_->edge(s1, s2, q0.data(), q1.data());
+    int queries = 0;
+    valid = !scene_->castCollides(q0.data(), q1.data(), nullptr, &queries);
+    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
+  }
+  countOmpl(valid);
+  return valid;
+}
+
+bool ArmHullCastMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
+                                             std::pair<ob::State*, double>& lastValid) const {
+  const bool valid = checkMotion(s1, s2);
+  if (!valid) {
+    if (lastValid.first) si_->copyState(lastValid.first, s1);
+    lastValid.second = 0.0;
+  }
+  return valid;
 }
 
 // ---- HullCastMotionValidator ----------------------------------------------------

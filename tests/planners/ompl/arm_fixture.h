@@ -10,6 +10,7 @@
 
 #include "mddual/constants.h"
 #include "mddual/planning/arm_scene.h"
+#include "mddual/planning/dense_contact.h"
 #include "mddual/scene/loaders.h"
 #include "test_support.h"
 
@@ -60,16 +61,7 @@ inline std::vector<double> randomConfiguration(const scene::RobotModel& model, R
 }
 
 /// The dense reference: the first of `steps` + 1 evenly spaced states that
-/// collides (its fraction), or +infinity.
-inline double denseFirstContact(const ArmScene& s, const std::vector<double>& q0, const std::vector<double>& q1,
-                                int steps) {
-  std::vector<double> q(q0.size());
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    for (std::size_t v = 0; v < q.size(); ++v) q[v] = q0[v] + t * (q1[v] - q0[v]);
-    if (s.collides(q.data())) return t;
-  }
-  return kInf;
-}
+/// collides (its fraction), or +infinity (planning/dense_contact.h).
+using planning::denseFirstContact;
 
 }  // namespace mddual::planning::testing

@@ -1,5 +1,6 @@
 // The checker tables (checker_registry.h): one line per checker, whose entry
-// is defined in a file of its own in this folder.
+// is defined in a file of its own in this folder; checkers of optional
+// libraries append theirs with addRigidChecker / addArmChecker.
 #include <sstream>
 
 #include "mddual/error.h"
@@ -12,8 +13,10 @@ RigidChecker mddChecker();
 RigidChecker fclChecker();
 RigidChecker fclContinuousChecker();
 
-const std::vector<RigidChecker>& rigidCheckers() {
-  static const std::vector<RigidChecker> table{
+namespace {
+
+std::vector<RigidChecker>& rigidTable() {
+  static std::vector<RigidChecker> table{
       mddChecker(),
       fclChecker(),
       fclContinuousChecker(),
@@ -21,18 +24,32 @@ const std::vector<RigidChecker>& rigidCheckers() {
   return table;
 }
 
+}  // namespace
+
+const std::vector<RigidChecker>& rigidCheckers() {
+  return rigidTable();
+}
+
 // Arms: arm_mdd_checker.cpp, arm_fcl_checker.cpp (fcl and fcl-fine).
 ArmChecker armMddChecker();
 ArmChecker armFclChecker();
 ArmChecker armFclFineChecker();
 
-const std::vector<ArmChecker>& armCheckers() {
-  static const std::vector<ArmChecker> table{
+namespace {
+
+std::vector<ArmChecker>& armTable() {
+  static std::vector<ArmChecker> table{
       armMddChecker(),
       armFclChecker(),
       armFclFineChecker(),
   };
   return table;
+}
+
+}  // namespace
+
+const std::vector<ArmChecker>& armCheckers() {
+  return armTable();
 }
 
 // ---- Names ----------------------------------------------------------------------------
@@ -61,6 +78,26 @@ const Entry& findEntry(const std::vector<Entry>& table, const std::string& name,
   }
   throw InvalidInputError(std::string("unknown ") + what + " '" + clipForMessage(name) +
                           "' (known: " + joinNames(entryNames(table)) + ")");
+}
+
+/// Appends `entry` to `table`, or nothing when an entry of the same name and
+/// install function is there already (a second registration call).
+template <class Entry>
+void addEntry(std::vector<Entry>& table, const Entry& entry, const char* what) {
+  if (entry.name == nullptr || entry.description == nullptr || entry.install == nullptr) {
+    throw InvalidInputError(std::string("add ") + what + ": the name, description and install function must be set");
+  }
+  const std::string name = entry.name;
+  if (name.empty() || name.find(',') != std::string::npos) {
+    throw InvalidInputError(std::string("add ") + what + ": bad name '" + clipForMessage(name) +
+                            "' (empty or with a comma)");
+  }
+  for (const Entry& e : table) {
+    if (name != e.name) continue;
+    if (e.install == entry.install) return;
+    throw InvalidInputError(std::string("add ") + what + ": the table has a checker named '" + name + "' already");
+  }
+  table.push_back(entry);
 }
 
 template <class Entry>
@@ -97,6 +134,14 @@ const RigidChecker& findRigidChecker(const std::string& name) {
 
 std::vector<std::string> parseCheckerList(const std::string& list) {
   return parseNames(rigidCheckers(), list, "checker");
+}
+
+void addRigidChecker(const RigidChecker& checker) {
+  addEntry(rigidTable(), checker, "checker");
+}
+
+void addArmChecker(const ArmChecker& checker) {
+  addEntry(armTable(), checker, "arm checker");
 }
 
 std::vector<std::string> armCheckerNames() {

@@ -6,7 +6,11 @@
 // its entry (name, one-line description, install function), and one line in
 // its kind's table in planners/frontend/src/checkers/registry.cpp; the
 // command line, the logs and the tests take the names and the order from
-// the tables (docs/extending.md).
+// the tables (docs/extending.md). A checker in an optional library (the
+// Bullet peer, mddual_hull_cast) is not in these tables: that library's
+// registration function appends its entries (addRigidChecker,
+// addArmChecker), and the program calls it once at start-up (the CLI does
+// when built with Bullet; docs/extending.md).
 //
 // An install function puts a state validity checker and a motion validator
 // on the context's SpaceInformation and returns what the caller reads of
@@ -98,7 +102,8 @@ struct RigidChecker {
   InstalledChecker (*install)(const RigidCheckerContext& context);
 };
 
-/// The table, in the order the benchmark runs them (mdd, fcl, fcl-continuous).
+/// The table, in the order the benchmark runs them (mdd, fcl, fcl-continuous, then
+/// the registered ones: hull-cast when registerHullCastCheckers() was called).
 const std::vector<RigidChecker>& rigidCheckers();
 /// The names of rigidCheckers(), in order.
 std::vector<std::string> rigidCheckerNames();
@@ -108,6 +113,12 @@ const RigidChecker& findRigidChecker(const std::string& name);
 /// A comma-separated list of checker names ("mdd,fcl"), in order; throws
 /// InvalidInputError for an unknown or repeated name or an empty list.
 std::vector<std::string> parseCheckerList(const std::string& list);
+/// Appends `checker` to rigidCheckers() (after the built-in ones, in call
+/// order). A second call with the same entry does nothing. Throws
+/// InvalidInputError for an unset field, an empty name or one with a comma,
+/// or a name the table has for another checker. Not thread-safe: call it at
+/// start-up, before the tables are read (it may move the table's entries).
+void addRigidChecker(const RigidChecker& checker);
 
 // ---- Arms (MotionBenchMaker problems) -------------------------------------------
 
@@ -130,12 +141,15 @@ struct ArmChecker {
   InstalledChecker (*install)(const ArmCheckerContext& context);
 };
 
-/// The table, in the order the arm benchmark runs them (mdd, fcl, fcl-fine).
+/// The table, in the order the arm benchmark runs them (mdd, fcl, fcl-fine,
+/// then the registered ones).
 const std::vector<ArmChecker>& armCheckers();
 std::vector<std::string> armCheckerNames();
 /// Throws InvalidInputError "unknown arm checker 'NAME' (known: ...)".
 const ArmChecker& findArmChecker(const std::string& name);
 /// As parseCheckerList, for arm checker names.
 std::vector<std::string> parseArmCheckerList(const std::string& list);
+/// As addRigidChecker, for armCheckers().
+void addArmChecker(const ArmChecker& checker);
 
 }  // namespace mddual::planning

@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "mddual/planning/state_space.h"
+#include "mddual/scene/robot_model.h"
 #include "mddual/scene/scene.h"
+#include "mddual/scene/srdf.h"
 
 namespace mddual::planning::examples {
 
@@ -66,6 +68,20 @@ PlanningSpacePtr makeSpace(const ExampleScene& scene, SpaceKind kind);
 inline PlanningSpacePtr makeSpace(const ExampleScene& scene) {
   return makeSpace(scene, scene.kind);
 }
+
+/// A planar arm (the hull-cast tests, the soundness suite's arm family): a
+/// base link without pieces, then one link per entry of `lengths`, link i a
+/// box from its joint's origin along +x (lengths[i] long, 2 half_width wide
+/// along y, 2 half_height high along z) on a revolute joint about z with
+/// limits [-pi, pi], placed at the far end of the link before (the first at
+/// the base's origin). Variable i turns link i + 1. `filter` skips the
+/// adjacent pairs (they overlap at their joint); the others are checked.
+/// Throws InvalidInputError for no link or a size that is not positive.
+struct PlanarArm {
+  std::shared_ptr<const scene::RobotModel> model;
+  scene::AllowedCollisions filter;
+};
+PlanarArm planarArm(const std::vector<double>& lengths, double half_width = 0.05, double half_height = 0.05);
 
 /// Helpers: a convex piece from points; the 12 triangles of a box; the
 /// triangles of a prism over a simple polygon (counter-clockwise, any shape)

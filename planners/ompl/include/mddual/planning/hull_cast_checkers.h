@@ -11,6 +11,13 @@
 //     (btGjkEpaSolver2::Penetration); each world piece is a btConvexHullShape
 //     of its vertices (a mesh triangle is a flat hull of three points).
 //   - HullCastMotionValidator: an OMPL MotionValidator on it.
+//   - ArmHullCastScene, ArmHullCastMotionValidator: the same cast for an arm
+//     (ArmScene): each checked link's pieces at the edge's two end
+//     configurations (forward kinematics), each piece's hull of both poses
+//     cast against the world pieces and, for the self pairs ArmScene checks,
+//     against the other link's swept piece hulls (MoveIt's Bullet plugin
+//     casts every link this way). A link turning about its joint sweeps an
+//     arc outside those hulls: the same miss as the rigid cast.
 //
 // The hull of the two end poses is the swept volume of a translation, so on
 // translating edges the check is exact up to Bullet's GJK tolerance. On a
@@ -27,6 +34,9 @@
 //
 // Thread safety: the world's Bullet shapes are built once and only read; the
 // swept hulls are made per call.
+//
+// registerHullCastCheckers() adds the checker "hull-cast" to both benchmark
+// tables (checker_registry.h): FCL's state check with the cast for edges.
 #pragma once
 
 #include <ompl/base/MotionValidator.h>
@@ -36,6 +46,7 @@
 #include <memory>
 #include <utility>
 
+#include "mddual/planning/arm_checkers.h"
 #include "mddual/planning/counters.h"
 #include "mddual/planning/state_space.h"
 #include "mddual/scene/scene.h"
@@ -44,6 +55,8 @@ namespace mddual::planning {
 
 OMPL_CLASS_FORWARD(HullCastScene);
 OMPL_CLASS_FORWARD(HullCastMotionValidator);
+OMPL_CLASS_FORWARD(ArmHullCastScene);
+OMPL_CLASS_FORWARD(ArmHullCastMotionValidator);
 
 /// Bullet's model of a robot and a world built from the same pieces (see above).
 class HullCastScene {
@@ -80,5 +93,54 @@ class HullCastMotionValidator : public CountedMotionValidator {
   PlanningSpacePtr space_;
   std::shared_ptr<const HullCastScene> scene_;
 };
+
+/// The arm cast (see the file comment) over an ArmScene's links, world and
+/// checked pairs.
+class ArmHullCastScene {
+ public:
+  /// Throws InvalidInputError for a null scene.
+  explicit ArmHullCastScene(std::shared_ptr<const ArmScene> scene);
+  ~ArmHullCastScene();
+  ArmHullCastScene(const ArmHullCastScene&) = delete;
+  ArmHullCastScene& operator=(const ArmHullCastScene&) = delete;
+
+  /// Whether, for the edge from configuration q0 to q1 (full configurations,
+  /// model().numVariables() values), the hull of some checked link piece at
+  /// both ends overlaps a world piece, or the swept hulls of a self pair's
+  /// pieces overlap. `which` (when not null) receives the pair found;
+  /// pair_queries: narrow-phase calls.
+  bool castCollides(const double* q0, const double* q1, ArmContact* which = nullptr, int* pair_queries = nullptr) const;
+  const ArmScene& scene() const { return *scene_; }
+
+ private:
+  struct Impl;
+  std::shared_ptr<const ArmScene> scene_;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Motion validity of an arm edge by ArmHullCastScene::castCollides (edges
+/// under OMPL's interpolation, ArmSpace::edge); both ends must satisfy the
+/// bounds. Misses contacts of turning links outside the hulls (see above).
+/// Used with FclArmStateValidityChecker for the states.
+class ArmHullCastMotionValidator : public CountedMotionValidator {
+ public:
+  /// Throws InvalidInputError for a null argument, when si's state space is
+  /// not space->stateSpace(), or the space's robot is not the scene's.
+  ArmHullCastMotionValidator(const ompl::base::SpaceInformationPtr& si, ArmSpacePtr space,
+                             std::shared_ptr<const ArmHullCastScene> scene);
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
+  /// On an invalid edge lastValid = (copy of s1, 0) (no time of contact).
+  bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
+                   std::pair<ompl::base::State*, double>& lastValid) const override;
+
+ private:
+  ArmSpacePtr space_;
+  std::shared_ptr<const ArmHullCastScene> scene_;
+};
+
+/// Appends the "hull-cast" entries to the checker tables (addRigidChecker;
+/// planners/frontend/src/checkers/bullet/hull_cast_checker.cpp). Call once at
+/// start-up, before the tables are read; a second call does nothing.
+void registerHullCastCheckers();
 
 }  // namespace mddual::planning

@@ -73,6 +73,8 @@ class PairGeometry {
   Eigen::Vector3d vectorToA(const Eigen::Vector3d& v_W) const { return X_WA_.linear().transpose() * v_W; }
 
  private:
+  /// The constructor's last step, once R_AB_, p_AB_ and X_WA_ are set: g_A_, scale_, the flat case.
+  void finishSetUp();
   const ConvexPolytope& a_;
   const ConvexPolytope& b_;
   Eigen::Isometry3d X_WA_;

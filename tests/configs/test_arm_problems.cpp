@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ struct ArmSets {
   std::size_t problems;  ///< per set
   int blocked;           ///< at least this many blocked straight edges per set
 };
+
+std::ostream& operator<<(std::ostream& out, const ArmSets& s) {
+  return out << s.name;
+}
 
 class ArmProblems : public ::testing::TestWithParam<ArmSets> {};
 
@@ -77,7 +82,7 @@ class PairCheck {
   std::shared_ptr<ArmScene> scene_;
 };
 
-TEST(PandaModel, DisablesThePairsInContactEverywhereAndChecksTheOthers) {
+TEST(PandaArmModel, DisablesThePairsInContactEverywhereAndChecksTheOthers) {
   const ArmRobot robot = loadArmRobot(kPandaDir / "panda.urdf", kPandaDir / "panda.srdf");
   const scene::RobotModel& model = *robot.model;
   EXPECT_EQ(model.numVariables(), 8);  // seven arm joints and the left finger (the right one mimics it)

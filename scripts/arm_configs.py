@@ -15,6 +15,7 @@ standard library only; deterministic output.
 
 import math
 
+import arm_problems
 import meshgen
 
 # Joint name, axis, limits (rad), length of the link it carries (m), radius.
@@ -34,9 +35,7 @@ WAISTED = {"link2", "link4"}
 READY = [0.0, -0.3, 0.0, -1.2, 0.0, 1.4, 0.8]
 
 
-def fmt(x):
-    s = ("%.6f" % x).rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
+fmt = arm_problems.fmt
 
 
 def vec(v):
@@ -161,9 +160,57 @@ def srdf_text():
     return "\n".join(lines) + "\n"
 
 
+# ---- forward kinematics and bounding spheres, for scripts/arm_problems.py ------------
+
+def _rot(axis, a):
+    c, s = math.cos(a), math.sin(a)
+    if axis == (0, 0, 1):
+        return ((c, -s, 0), (s, c, 0), (0, 0, 1))
+    return ((c, 0, s), (0, 1, 0), (-s, 0, c))  # about y
+
+
+def link_spheres():
+    """Per link, spheres (centre, radius) in the link frame that contain it
+    (the URDF's primitives grown by 2 mm for their circumscribed polygons)."""
+    h = BASE_HEIGHT
+    spheres = {"base": [((0, 0, z), math.hypot(0.102, h / 6)) for z in (h / 6, h / 2, 5 * h / 6)]}
+    for i, (_, _, _, length, radius) in enumerate(JOINTS, start=1):
+        spheres["link%d" % i] = arm_problems.slab_spheres(link_profile(length, radius, "link%d" % i in WAISTED))
+    spheres["link6"] += arm_problems.box_spheres((0.05, 0, 0.05), (0.06, 0.05, 0.06), 2, 1)
+    spheres["hand"] = (arm_problems.box_spheres((0, 0, 0.035), (0.06, 0.2, 0.05), 1, 4)
+                       + [((0, 0, 0.01), math.hypot(0.042, 0.01))])
+    for side, sign in (("left", 1), ("right", -1)):
+        spheres["finger_" + side] = arm_problems.box_spheres((0, sign * 0.0125, 0.025), (0.02, 0.015, 0.05), 2, 2)
+    return spheres
+
+
+def link_poses(q, finger=0.0):
+    """(R, p) of every link in the base frame for the 7 arm angles q."""
+    apply = arm_problems.apply
+    poses = {"base": (((1, 0, 0), (0, 1, 0), (0, 0, 1)), (0.0, 0.0, 0.0))}
+    R, p = poses["base"]
+    origin = (0, 0, BASE_HEIGHT)
+    for i, (_, axis, _, length, _) in enumerate(JOINTS, start=1):
+        p = apply(R, p, origin)
+        R = arm_problems.mul(R, _rot(axis, q[i - 1]))
+        poses["link%d" % i] = (R, p)
+        origin = (0, 0, length)
+    hand = (R, apply(R, p, origin))
+    poses["hand"] = hand
+    poses["finger_left"] = (hand[0], apply(hand[0], hand[1], (0, finger, 0.06)))
+    poses["finger_right"] = (hand[0], apply(hand[0], hand[1], (0, -finger, 0.06)))
+    return poses
+
+
+ARM7 = arm_problems.ArmSpec(
+    name="arm7", group="arm", joints=[name for name, _, _, _, _ in JOINTS],
+    limits=[limits for _, _, limits, _, _ in JOINTS], ready=READY, finger_joint="finger_left_joint", finger=0.02,
+    link_poses=link_poses, spheres=link_spheres(), disabled=disabled_pairs(), hand=("hand", (0, 0, 0.08)),
+    scale=1.0, problems=20, seed=1000)
+
+
 def arm7(files):
-    import arm_problems  # noqa: E402 (it imports this module)
     folder = "arm7/"
     files[folder + "arm7.urdf"] = urdf_text(files, folder)
     files[folder + "arm7.srdf"] = srdf_text()
-    arm_problems.problems(files, folder)
+    arm_problems.problems(files, folder, ARM7)

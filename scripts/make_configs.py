@@ -27,9 +27,11 @@ each for robot and world, and a collision-free witness path):
   cubicles_mesh   an office of cubicles welded into one mesh, SE(3)
   apartment       a couch carried through an apartment of 40,000 triangles
   maze_planar     a boomerang in a maze welded into one mesh, SE(2)
-An articulated robot (scripts/arm_configs.py):
+Articulated robots, with MotionBenchMaker problem sets (scripts/arm_problems.py):
   arm7            our own 7-joint arm with a two-finger gripper: URDF, SRDF
-                  and link meshes
+                  and link meshes (scripts/arm_configs.py)
+  panda           a Franka Emika Panda: its published kinematics, collision
+                  geometry of primitives (scripts/panda_configs.py)
 """
 
 import argparse
@@ -40,6 +42,7 @@ import sys
 
 import arm_configs
 import meshgen
+import panda_configs
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 OUT = os.path.join(ROOT, "configs")
@@ -734,7 +737,7 @@ pose lies at z = 0.""" % (len(maze.triangles), len(boomerang.triangles)), planar
 CONFIGS = {"thin_walls": thin_walls, "convex_field": convex_field, "narrow_passage": narrow_passage,
            "maze_se2": maze_se2, "cubicles": cubicles, "bugtrap": bugtrap, "twistycool": twistycool,
            "cubicles_mesh": cubicles_mesh, "apartment": apartment, "maze_planar": maze_planar,
-           "arm7": arm_configs.arm7}
+           "arm7": arm_configs.arm7, "panda": panda_configs.panda}
 
 
 def make(names):

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# arm7's MotionBenchMaker problem sets (configs/arm7/problems) with `mddual
+# An arm's MotionBenchMaker problem sets (configs/<robot>/problems) with `mddual
 # bench`: the certified arm checker (mdd) against FCL with OMPL's discrete
 # validator at its default resolution (fcl) and at 1/32 rad (fcl-fine),
 # RRT-Connect and BKPIECE, the same runs, limits and seed for all three;
@@ -9,7 +9,11 @@
 # build).
 #
 #   scripts/run-arm-bench.sh [SET ...]
+#   MDDUAL_ARM_ROBOT=panda scripts/run-arm-bench.sh [SET ...]
 #
+# MDDUAL_ARM_ROBOT (default arm7) picks the robot: configs/<robot>/<robot>.urdf
+# and .srdf and its sets; for a robot other than arm7 the outputs are
+# out/bench-arms-<robot>/ and docs/results/<robot>.md.
 # MDDUAL_ARM_PROBLEMS (default 20) problems per set, MDDUAL_ARM_RUNS (default
 # 3) runs per problem, planner and checker, MDDUAL_ARM_LIMIT (default 10)
 # seconds per run. MDDUAL_ARM_BENCH_OUT changes out/bench-arms; MDDUAL_JOBS
@@ -18,35 +22,51 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 sets=("$@")
 [ ${#sets[@]} -eq 0 ] && sets=(bookshelf_thin cage box table_pick table_under_pick table_bars)
+robot="${MDDUAL_ARM_ROBOT:-arm7}"
+config="configs/$robot"
+if [ ! -f "$config/$robot.urdf" ] || [ ! -f "$config/$robot.srdf" ]; then
+  echo "run-arm-bench: no robot $config/$robot.urdf and $config/$robot.srdf" >&2
+  exit 2
+fi
+if [ "$robot" = arm7 ]; then
+  results=docs/results/arms.md
+  default_out=out/bench-arms
+else
+  results="docs/results/$robot.md"
+  default_out="out/bench-arms-$robot"
+fi
 problems="${MDDUAL_ARM_PROBLEMS:-20}"
 runs="${MDDUAL_ARM_RUNS:-3}"
 limit="${MDDUAL_ARM_LIMIT:-10}"
-out="${MDDUAL_ARM_BENCH_OUT:-out/bench-arms}"
+out="${MDDUAL_ARM_BENCH_OUT:-$default_out}"
 jobs="${MDDUAL_JOBS:-$(nproc)}"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j "$jobs" --target mddual >/dev/null
 mkdir -p "$out"
-table="$out/arms.md"
+table="$out/$(basename "$results")"
 command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_RUNS=$runs MDDUAL_ARM_LIMIT=$limit ./scripts/run-arm-bench.sh ${*}"
+[ "$robot" = arm7 ] || command="MDDUAL_ARM_ROBOT=$robot $command"
 {
-  echo "# arm7 on its MotionBenchMaker problem sets"
+  echo "# $robot on its MotionBenchMaker problem sets"
   echo
   echo "Made by \`${command% }\` at $(git rev-parse --short HEAD) on $(date -u +%Y-%m-%d)," \
     "$(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')); seed 1."
   echo "Checkers: mdd (certified arm edges), fcl (FCL states, OMPL's discrete validator at its default"
-  echo "resolution), fcl-fine (the same at 1/32 rad). A run without a verified solution counts at the limit."
+  echo "resolution), fcl-fine (the same at 1/32 rad), and hull-cast (FCL states, Bullet casts of each link"
+  echo "piece's hull between the edge's end poses) when built with Bullet. A run without a verified"
+  echo "solution counts at the limit."
   echo
 } > "$table"
 for s in "${sets[@]}"; do
-  if [ ! -d "configs/arm7/problems/$s" ]; then
-    echo "run-arm-bench: no problem set configs/arm7/problems/$s" >&2
+  if [ ! -d "$config/problems/$s" ]; then
+    echo "run-arm-bench: no problem set $config/problems/$s" >&2
     exit 2
   fi
-  ./build/release/cli/mddual bench "configs/arm7/problems/$s" --robot configs/arm7/arm7.urdf \
-    --srdf configs/arm7/arm7.srdf --planners RRTConnectkConfigDefault,BKPIECEGood --problems "$problems" \
+  ./build/release/cli/mddual bench "$config/problems/$s" --robot "$config/$robot.urdf" \
+    --srdf "$config/$robot.srdf" --planners RRTConnectkConfigDefault,BKPIECEGood --problems "$problems" \
     --runs "$runs" --time-limit "$limit" --seed 1 --output "$out/$s"
   cat "$out/$s/summary.md" >> "$table"
   echo >> "$table"
 done
-cp "$table" docs/results/arms.md
-echo "run-arm-bench: docs/results/arms.md"
+cp "$table" "$results"
+echo "run-arm-bench: $results"

@@ -1,9 +1,18 @@
-// arm7's problem sets (configs/arm7/problems, scripts/arm_problems.py): six
-// sets of MotionBenchMaker problems; every problem loads, its start and goal
-// are within the joint limits and free by the exact check, and its straight
-// edge is blocked in at least some problems of each set (the sets are not
-// trivial).
+// The arms' problem sets (configs/arm7/problems and configs/panda/problems,
+// scripts/arm_problems.py): six sets of MotionBenchMaker problems per robot;
+// every problem loads, its start and goal are within the joint limits and
+// free by the exact check, and its straight edge is blocked in at least some
+// problems of each set (the sets are not trivial). And the Panda's SRDF
+// (scripts/panda_configs.py): the pairs it disables beyond the adjacent ones
+// touch in every sampled configuration, and every pair it checks is free in
+// some.
 #include <gtest/gtest.h>
+
+#include <cstdio>
+#include <ostream>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "arm7_dir.h"
 #include "mddual/planning/arm_problem.h"
@@ -12,26 +21,102 @@ namespace mddual::planning {
 namespace {
 
 using testing::kArm7Dir;
+using testing::kPandaDir;
 
-TEST(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
-  const ArmRobot robot = loadArmRobot(kArm7Dir / "arm7.urdf", kArm7Dir / "arm7.srdf");
+struct ArmSets {
+  std::string name;
+  std::filesystem::path dir;
+  std::string group;
+  std::size_t problems;  ///< per set
+  int blocked;           ///< at least this many blocked straight edges per set
+};
+
+std::ostream& operator<<(std::ostream& out, const ArmSets& s) {
+  return out << s.name;
+}
+
+class ArmProblems : public ::testing::TestWithParam<ArmSets> {};
+
+TEST_P(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
+  const ArmSets& arm = GetParam();
+  const ArmRobot robot = loadArmRobot(arm.dir / (arm.name + ".urdf"), arm.dir / (arm.name + ".srdf"));
   const std::vector<std::string> sets = {"bookshelf_thin",   "cage",      "box", "table_pick",
                                          "table_under_pick", "table_bars"};
   for (const std::string& set : sets) {
-    const std::vector<scene::MbmProblemFiles> problems = scene::listMbmProblems(kArm7Dir / "problems" / set);
-    EXPECT_GE(problems.size(), 20u) << set;
+    const std::vector<scene::MbmProblemFiles> problems = scene::listMbmProblems(arm.dir / "problems" / set);
+    EXPECT_GE(problems.size(), arm.problems) << set;
     int blocked = 0;
     for (const scene::MbmProblemFiles& files : problems) {
       // loadArmProblem throws for a start or goal out of limits or in collision.
       const ArmProblem p = loadArmProblem(robot, files);
-      EXPECT_EQ(p.group, "arm");
+      EXPECT_EQ(p.group, arm.group);
       EXPECT_TRUE(p.warnings.empty()) << p.name;
       EXPECT_FALSE(p.scene->collides(p.start.data())) << p.name;
       EXPECT_FALSE(p.scene->collides(p.goal.data())) << p.name;
       blocked += p.scene->checkEdge(p.start.data(), p.goal.data(), EdgeQuery::kValidity).collides ? 1 : 0;
     }
-    EXPECT_GE(blocked, 5) << set << ": too few problems whose straight edge is blocked";
+    EXPECT_GE(blocked, arm.blocked) << set << ": too few problems whose straight edge is blocked";
+    std::printf("%s/%s: %zu problems, %d with the straight edge blocked\n", arm.name.c_str(), set.c_str(),
+                problems.size(), blocked);
   }
+}
+
+INSTANTIATE_TEST_SUITE_P(Arms, ArmProblems,
+                         ::testing::Values(ArmSets{"arm7", kArm7Dir, "arm", 20, 5},
+                                           ArmSets{"panda", kPandaDir, "panda_arm", 10, 3}),
+                         [](const ::testing::TestParamInfo<ArmSets>& param) { return param.param.name; });
+
+/// Whether links k and l touch at q (the world empty, only that pair checked).
+class PairCheck {
+ public:
+  PairCheck(const std::shared_ptr<const scene::RobotModel>& model, int k, int l) {
+    scene::AllowedCollisions only(*model);
+    for (int a = 0; a < model->numLinks(); ++a) {
+      for (int b = 0; b < model->numLinks(); ++b) only.allow(a, b, !((a == k && b == l) || (a == l && b == k)));
+    }
+    scene_ = std::make_shared<ArmScene>(model, std::make_shared<const scene::World>(), only);
+  }
+  bool touches(const std::vector<double>& q) const { return scene_->collides(q.data()); }
+
+ private:
+  std::shared_ptr<ArmScene> scene_;
+};
+
+TEST(PandaArmModel, DisablesThePairsInContactEverywhereAndChecksTheOthers) {
+  const ArmRobot robot = loadArmRobot(kPandaDir / "panda.urdf", kPandaDir / "panda.srdf");
+  const scene::RobotModel& model = *robot.model;
+  EXPECT_EQ(model.numVariables(), 8);  // seven arm joints and the left finger (the right one mimics it)
+  const scene::AllowedCollisions srdf(model, robot.srdf);
+  std::mt19937_64 rng(5);
+  std::vector<std::vector<double>> samples(2000, std::vector<double>(static_cast<std::size_t>(model.numVariables())));
+  for (std::vector<double>& q : samples) {
+    for (const scene::Joint& j : model.joints()) {
+      if (j.moves() && !j.mimic) {
+        q[static_cast<std::size_t>(j.variable)] = std::uniform_real_distribution<double>(j.lower, j.upper)(rng);
+      }
+    }
+  }
+  int checked_pairs = 0;
+  for (int k = 0; k < model.numLinks(); ++k) {
+    for (int l = k + 1; l < model.numLinks(); ++l) {
+      if (model.link(k).pieces.empty() || model.link(l).pieces.empty()) continue;
+      const bool adjacent = model.link(l).parent_joint >= 0 &&
+                            (model.joint(model.link(l).parent_joint).parent_link == k ||
+                             (model.link(l).name == "panda_hand" && model.link(k).name == "panda_link7"));
+      const PairCheck pair(robot.model, k, l);
+      int touching = 0;
+      for (const std::vector<double>& q : samples) touching += pair.touches(q) ? 1 : 0;
+      const std::string names = model.link(k).name + " / " + model.link(l).name;
+      if (touching > 0) std::printf("%s: in contact in %d of %zu samples\n", names.c_str(), touching, samples.size());
+      if (srdf.allowed(k, l) && !adjacent) {
+        EXPECT_EQ(touching, static_cast<int>(samples.size())) << names << ": disabled, yet free";
+      } else if (!srdf.allowed(k, l)) {
+        EXPECT_LT(touching, static_cast<int>(samples.size())) << names << ": checked, yet always in contact";
+        ++checked_pairs;
+      }
+    }
+  }
+  EXPECT_GE(checked_pairs, 30);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The certified arm motion check on arm7's problem sets against a dense FCL
+// The certified arm motion check on the arms' problem sets against a dense FCL
 // check of the same edges (FclArmScene: FCL's collide() on the same link and
 // self pairs and pieces, states at most MDDUAL_ARM_DENSE_STEP radians apart
 // in every joint, 1e-3 by default): no colliding edge called free, and the
@@ -8,16 +8,20 @@
 // the goal and to configurations near it. False alarms (edges refused that
 // the dense check passes) are counted and printed, not asserted.
 //
-// The CI sample: 24 edges per set, on its first 2 problems. The full sweep
-// (docs/testing.md): MDDUAL_PLANNING_SCALE=420 MDDUAL_ARM_DENSE_STEP=1e-4
-// runs 10,080 edges per set over its 20 problems.
+// The CI sample: 24 edges per set, on its first 2 problems (arm7's and the
+// Panda's sets). The full sweep (docs/testing.md): MDDUAL_PLANNING_SCALE=420
+// MDDUAL_ARM_DENSE_STEP=1e-4 runs 10,080 edges per set over all its problems
+// (20 per set of arm7, 10 of the Panda).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <ostream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "arm7_dir.h"
 #include "mddual/planning/arm_checkers.h"
@@ -27,6 +31,18 @@ namespace mddual::planning {
 namespace {
 
 using testing::kArm7Dir;
+using testing::kPandaDir;
+
+/// A robot's problem set.
+struct ArmSet {
+  std::string robot;
+  std::filesystem::path dir;
+  std::string set;
+};
+
+std::ostream& operator<<(std::ostream& out, const ArmSet& s) {
+  return out << s.robot << "/" << s.set;
+}
 
 double envNumber(const char* name, double fallback) {
   const char* text = std::getenv(name);
@@ -48,14 +64,15 @@ double denseFcl(const FclArmScene& fcl, const std::vector<double>& q0, const std
   return std::numeric_limits<double>::infinity();
 }
 
-class ArmSoundness : public ::testing::TestWithParam<std::string> {};
+class ArmSoundness : public ::testing::TestWithParam<ArmSet> {};
 
 TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
   const int scale = std::max(1, static_cast<int>(envNumber("MDDUAL_PLANNING_SCALE", 1)));
   const double step = envNumber("MDDUAL_ARM_DENSE_STEP", 1e-3);
   const std::uint64_t seed = static_cast<std::uint64_t>(envNumber("MDDUAL_PLANNING_SEED", 1));
-  const ArmRobot robot = loadArmRobot(kArm7Dir / "arm7.urdf", kArm7Dir / "arm7.srdf");
-  const std::vector<scene::MbmProblemFiles> files = scene::listMbmProblems(kArm7Dir / "problems" / GetParam());
+  const ArmSet& arm = GetParam();
+  const ArmRobot robot = loadArmRobot(arm.dir / (arm.robot + ".urdf"), arm.dir / (arm.robot + ".srdf"));
+  const std::vector<scene::MbmProblemFiles> files = scene::listMbmProblems(arm.dir / "problems" / arm.set);
   // 24 edges per set times the scale: on 2 problems at scale 1, spread over
   // every problem above.
   const std::size_t problems = scale == 1 ? std::min<std::size_t>(2, files.size()) : files.size();
@@ -115,13 +132,23 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
   }
   EXPECT_GE(colliding, edges / 10) << "too few colliding edges to test the check";
   EXPECT_GE(free_edges, edges / 10) << "too few free edges to test the check";
-  std::printf("%s: %d edges, %d colliding, %d free, %d false alarms (dense step %g rad)\n", GetParam().c_str(), edges,
-              colliding, free_edges, false_alarms, step);
+  std::printf("%s/%s: %d edges, %d colliding, %d free, %d false alarms (dense step %g rad)\n", arm.robot.c_str(),
+              arm.set.c_str(), edges, colliding, free_edges, false_alarms, step);
 }
 
-INSTANTIATE_TEST_SUITE_P(Arm7, ArmSoundness,
-                         ::testing::Values("bookshelf_thin", "cage", "box", "table_pick", "table_under_pick",
-                                           "table_bars"));
+std::vector<ArmSet> armSets() {
+  std::vector<ArmSet> out;
+  for (const char* set : {"bookshelf_thin", "cage", "box", "table_pick", "table_under_pick", "table_bars"}) {
+    out.push_back({"arm7", kArm7Dir, set});
+    out.push_back({"panda", kPandaDir, set});
+  }
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Arms, ArmSoundness, ::testing::ValuesIn(armSets()),
+                         [](const ::testing::TestParamInfo<ArmSet>& param) {
+                           return param.param.robot + "_" + param.param.set;
+                         });
 
 }  // namespace
 }  // namespace mddual::planning

@@ -24,6 +24,7 @@ using testing::expectSceneError;
 using testing::TempDir;
 
 const std::filesystem::path kArm7 = std::filesystem::path(MDDUAL_CONFIGS_DIR) / "arm7" / "arm7.urdf";
+const std::filesystem::path kPanda = std::filesystem::path(MDDUAL_CONFIGS_DIR) / "panda" / "panda.urdf";
 
 /// A tree with every joint kind: a branch, rotated and offset origins, a
 /// continuous joint, a prismatic joint, a mimic of it with a multiplier and
@@ -143,11 +144,27 @@ TEST(RobotModel, ForwardKinematicsMatchesKdl) {
   const RobotModel arm = loadRobotModel(kArm7);
   EXPECT_EQ(arm.numVariables(), 8);
   expectKdlAgrees(arm, readText(kArm7), 200);
+  // The Panda: rotated joint origins (rpy), a fixed flange and a turned hand.
+  const RobotModel panda = loadRobotModel(kPanda);
+  EXPECT_EQ(panda.numVariables(), 8);
+  expectKdlAgrees(panda, readText(kPanda), 200);
+  // Its flange at the ready pose, where Franka's published kinematics put it.
+  const std::vector<double> values = {0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785};
+  std::vector<double> ready(8, 0.0);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    ready[static_cast<std::size_t>(panda.variableIndex("panda_joint" + std::to_string(i + 1)))] = values[i];
+  }
+  const Eigen::Vector3d flange =
+      panda.linkPoses(ready)[static_cast<std::size_t>(panda.linkIndex("panda_link8"))].translation();
+  EXPECT_NEAR(flange.x(), 0.307, 1e-3);
+  EXPECT_NEAR(flange.y(), 0.0, 1e-3);
+  EXPECT_NEAR(flange.z(), 0.590, 1e-3);
 }
 
 TEST(RobotModel, ReachBoundsEveryVertexFromItsJoints) {
   TempDir dir;
-  for (const RobotModel& model : {loadRobotModel(dir.write("tree.urdf", kTreeUrdf)), loadRobotModel(kArm7)}) {
+  for (const RobotModel& model :
+       {loadRobotModel(dir.write("tree.urdf", kTreeUrdf)), loadRobotModel(kArm7), loadRobotModel(kPanda)}) {
     std::mt19937 rng(11);
     int checked = 0;
     double tightest = 0.0;  // largest ratio |x - o_j| / reach seen

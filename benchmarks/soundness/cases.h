@@ -1,7 +1,8 @@
 // The soundness suite: named, seeded families of edges where collision
 // checkers are known to go wrong, each edge with an independent ground truth,
-// and the checkers it compares (mdd, fcl, fcl-continuous, hull-cast; for the
-// arm family mdd, fcl and hull-cast, its arm checkers).
+// and the checkers it compares (mdd, fcl, fcl-continuous, hull-cast,
+// hull-cast-edge; for the arm family the same without fcl-continuous, its arm
+// checkers).
 // Shared by the runner (run_soundness.cpp, scripts/run-soundness.sh) and the
 // tests (tests/benchmarks/soundness).
 //
@@ -140,10 +141,12 @@ double denseFirstContact(const Case& c, const PoseFn& pose, double speed, double
 /// motion FCL's continuous check takes on rotating edges), densely.
 double screwFirstContact(const Case& c, int edge, double min_step = 1e-5);
 
-/// The checkers compared: "mdd", "fcl", "fcl-continuous", "hull-cast".
+/// The checkers compared: "mdd", "fcl", "fcl-continuous", "hull-cast" (the
+/// Bullet cast over OMPL's segments), "hull-cast-edge" (one cast per edge).
 const std::vector<std::string>& checkerNames();
 /// The checkers of a family: checkerNames(), or for the arm family the arm
-/// checkers "mdd", "fcl", "hull-cast" (there is no continuous FCL arm check).
+/// checkers "mdd", "fcl", "hull-cast", "hull-cast-edge" (there is no
+/// continuous FCL arm check).
 const std::vector<std::string>& checkerNames(const std::string& family);
 /// A SpaceInformation whose motion validator is `checker`'s (see
 /// run-soundness.sh), of the case's kind (rigid or arm); throws

@@ -1,6 +1,9 @@
 // The checkers of the soundness suite, each on its own SpaceInformation over
-// the case's space: four for rigid bodies, three for the arm family (the arm
-// checkers of the same names as `mddual bench` installs them).
+// the case's space: five for rigid bodies, four for the arm family (the arm
+// checkers of the same names as `mddual bench` installs them). hull-cast is
+// the Bullet cast over OMPL's segments (Tesseract's motion validator, what
+// `mddual bench` plans with), hull-cast-edge one cast between the edge's two
+// ends (MoveIt's cast between two states).
 #include <ompl/base/DiscreteMotionValidator.h>
 
 #include <chrono>
@@ -19,16 +22,20 @@ namespace ob = ompl::base;
 using namespace mddual::planning;
 
 const std::vector<std::string>& checkerNames() {
-  static const std::vector<std::string> names = {"mdd", "fcl", "fcl-continuous", "hull-cast"};
+  static const std::vector<std::string> names = {"mdd", "fcl", "fcl-continuous", "hull-cast", "hull-cast-edge"};
   return names;
 }
 
 const std::vector<std::string>& checkerNames(const std::string& family) {
-  static const std::vector<std::string> arm = {"mdd", "fcl", "hull-cast"};
+  static const std::vector<std::string> arm = {"mdd", "fcl", "hull-cast", "hull-cast-edge"};
   return family == "arm-rotating-link" ? arm : checkerNames();
 }
 
 namespace {
+
+CastSegments castSegments(const std::string& checker) {
+  return checker == "hull-cast-edge" ? CastSegments::kWholeEdge : CastSegments::kResolution;
+}
 
 ob::SpaceInformationPtr makeArmChecker(const std::string& checker, const Scene& s) {
   auto si = std::make_shared<ob::SpaceInformation>(s.arm_space->stateSpace());
@@ -39,9 +46,9 @@ ob::SpaceInformationPtr makeArmChecker(const std::string& checker, const Scene& 
         std::make_shared<FclArmStateValidityChecker>(si, s.arm_space, std::make_shared<FclArmScene>(s.arm)));
     if (checker == "fcl") {
       si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
-    } else if (checker == "hull-cast") {
-      si->setMotionValidator(
-          std::make_shared<ArmHullCastMotionValidator>(si, s.arm_space, std::make_shared<ArmHullCastScene>(s.arm)));
+    } else if (checker == "hull-cast" || checker == "hull-cast-edge") {
+      si->setMotionValidator(std::make_shared<ArmHullCastMotionValidator>(
+          si, s.arm_space, std::make_shared<ArmHullCastScene>(s.arm), castSegments(checker)));
     } else {
       throw InvalidInputError("soundness: unknown arm checker '" + checker + "'");
     }
@@ -67,9 +74,9 @@ ob::SpaceInformationPtr makeChecker(const std::string& checker, const Scene& s) 
       si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
     } else if (checker == "fcl-continuous") {
       si->setMotionValidator(std::make_shared<FclContinuousMotionValidator>(si, s.space, fcl));
-    } else if (checker == "hull-cast") {
+    } else if (checker == "hull-cast" || checker == "hull-cast-edge") {
       auto hull = std::make_shared<HullCastScene>(s.robot, s.world);
-      si->setMotionValidator(std::make_shared<HullCastMotionValidator>(si, s.space, hull));
+      si->setMotionValidator(std::make_shared<HullCastMotionValidator>(si, s.space, hull, castSegments(checker)));
     } else {
       throw InvalidInputError("soundness: unknown checker '" + checker + "'");
     }

@@ -1,7 +1,10 @@
 #include <BulletCollision/CollisionShapes/btConvexHullShape.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "checker_arguments.h"
@@ -43,6 +46,44 @@ bool overlap(const LocalHull& a, const LocalHull& b) {
   btGjkEpaSolver2::sResults result;
   const btVector3 guess = b.X_W.getOrigin() - a.X_W.getOrigin();
   return btGjkEpaSolver2::Penetration(&a.shape, a.X_W, &b.shape, b.X_W, guess, result);
+}
+
+/// Tesseract's continuous motion validator, the peer modelled here: the edge
+/// s1 -> s2 is cut into the space's validSegmentCount(s1, s2) segments (OMPL's
+/// resolution, as the discrete validator; one for kWholeEdge); segment i is valid when its end
+/// state is valid (si's state validity checker: FCL, self pairs included) and
+/// `collides(start, end)` (the cast between its end states) is false. On the
+/// first failing segment lastValid (when given) is its start state and
+/// fraction. Returns whether every segment is valid.
+template <class Cast>
+bool castSegments(const ob::SpaceInformation& si, CastSegments segments, const ob::State* s1, const ob::State* s2,
+                  const Cast& collides, std::pair<ob::State*, double>* lastValid) {
+  const ob::StateSpace& space = *si.getStateSpace();
+  const unsigned n = segments == CastSegments::kWholeEdge ? 1u : std::max(1u, space.validSegmentCount(s1, s2));
+  ob::State* start = si.allocState();
+  ob::State* end = si.allocState();
+  si.copyState(start, s1);
+  bool valid = true;
+  unsigned i = 1;
+  for (; i <= n; ++i) {
+    if (i == n) {
+      si.copyState(end, s2);
+    } else {
+      space.interpolate(s1, s2, static_cast<double>(i) / n, end);
+    }
+    if (!si.isValid(end) || collides(start, end)) {
+      valid = false;
+      break;
+    }
+    std::swap(start, end);
+  }
+  if (!valid && lastValid) {
+    lastValid->second = static_cast<double>(i - 1) / n;
+    if (lastValid->first) si.copyState(lastValid->first, start);
+  }
+  si.freeState(start);
+  si.freeState(end);
+  return valid;
 }
 
 /// The hull of `vertices` (frame L) placed at X_a and at X_b.
@@ -183,8 +224,9 @@ bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmConta
 // ---- ArmHullCastMotionValidator ---------------------------------------------------
 
 ArmHullCastMotionValidator::ArmHullCastMotionValidator(const ob::SpaceInformationPtr& si, ArmSpacePtr space,
-                                                       std::shared_ptr<const ArmHullCastScene> scene)
-    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
+                                                       std::shared_ptr<const ArmHullCastScene> scene,
+                                                       CastSegments segments)
+    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)), segments_(segments) {
   const std::string who = "ArmHullCastMotionValidator";
   if (!si) throw InvalidInputError(who + ": the SpaceInformation is null");
   if (!space_) throw InvalidInputError(who + ": the ArmSpace is null");
@@ -198,60 +240,84 @@ ArmHullCastMotionValidator::ArmHullCastMotionValidator(const ob::SpaceInformatio
 }
 
 bool ArmHullCastMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  if (s1 == nullptr || s2 == nullptr) throw InvalidInputError("ArmHullCastMotionValidator: a null state");
-  CheckerCounters::Timer timer(counters_);
-  counters_.addMotionCheck();
-  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
-  if (valid) {
-    const std::size_t n = space_->fixedConfiguration().size();
-    std::vector<double> q0(n), q1(n);
-    space_->edge(s1, s2, q0.data(), q1.data());
-    int queries = 0;
-    valid = !scene_->castCollides(q0.data(), q1.data(), nullptr, &queries);
-    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
-  }
-  countOmpl(valid);
-  return valid;
+  return check(s1, s2, nullptr);
 }
 
 bool ArmHullCastMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                              std::pair<ob::State*, double>& lastValid) const {
-  const bool valid = checkMotion(s1, s2);
-  if (!valid) {
-    if (lastValid.first) si_->copyState(lastValid.first, s1);
-    lastValid.second = 0.0;
+  return check(s1, s2, &lastValid);
+}
+
+bool ArmHullCastMotionValidator::check(const ob::State* s1, const ob::State* s2,
+                                       std::pair<ob::State*, double>* lastValid) const {
+  if (s1 == nullptr || s2 == nullptr) throw InvalidInputError("ArmHullCastMotionValidator: a null state");
+  CheckerCounters::Timer timer(counters_);
+  counters_.addMotionCheck();
+  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
+  if (!valid && lastValid) {
+    if (lastValid->first) si_->copyState(lastValid->first, s1);
+    lastValid->second = 0.0;
   }
+  if (valid) {
+    const std::size_t n = space_->fixedConfiguration().size();
+    std::vector<double> q0(n), q1(n);
+    std::uint64_t queries = 0;
+    valid = castSegments(
+        *si_, segments_, s1, s2,
+        [&](const ob::State* a, const ob::State* b) {
+          space_->edge(a, b, q0.data(), q1.data());
+          int pair_queries = 0;
+          const bool hit = scene_->castCollides(q0.data(), q1.data(), nullptr, &pair_queries);
+          queries += static_cast<std::uint64_t>(pair_queries);
+          return hit;
+        },
+        lastValid);
+    counters_.addPairQueries(queries);
+  }
+  countOmpl(valid);
   return valid;
 }
 
 // ---- HullCastMotionValidator ----------------------------------------------------
 
 HullCastMotionValidator::HullCastMotionValidator(const ob::SpaceInformationPtr& si, PlanningSpacePtr space,
-                                                 std::shared_ptr<const HullCastScene> scene)
-    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)) {
+                                                 std::shared_ptr<const HullCastScene> scene, CastSegments segments)
+    : CountedMotionValidator(si), space_(std::move(space)), scene_(std::move(scene)), segments_(segments) {
   detail::checkCheckerArguments("HullCastMotionValidator", "HullCastScene", si, space_, scene_.get());
 }
 
 bool HullCastMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2) const {
-  CheckerCounters::Timer timer(counters_);
-  counters_.addMotionCheck();
-  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
-  if (valid) {
-    int queries = 0;
-    valid = !scene_->castCollides(space_->pose(s1), space_->pose(s2), &queries);
-    counters_.addPairQueries(static_cast<std::uint64_t>(queries));
-  }
-  countOmpl(valid);
-  return valid;
+  return check(s1, s2, nullptr);
 }
 
 bool HullCastMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
                                           std::pair<ob::State*, double>& lastValid) const {
-  const bool valid = checkMotion(s1, s2);
-  if (!valid) {
-    if (lastValid.first) si_->copyState(lastValid.first, s1);
-    lastValid.second = 0.0;
+  return check(s1, s2, &lastValid);
+}
+
+bool HullCastMotionValidator::check(const ob::State* s1, const ob::State* s2,
+                                    std::pair<ob::State*, double>* lastValid) const {
+  CheckerCounters::Timer timer(counters_);
+  counters_.addMotionCheck();
+  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
+  if (!valid && lastValid) {
+    if (lastValid->first) si_->copyState(lastValid->first, s1);
+    lastValid->second = 0.0;
   }
+  if (valid) {
+    std::uint64_t queries = 0;
+    valid = castSegments(
+        *si_, segments_, s1, s2,
+        [&](const ob::State* a, const ob::State* b) {
+          int pair_queries = 0;
+          const bool hit = scene_->castCollides(space_->pose(a), space_->pose(b), &pair_queries);
+          queries += static_cast<std::uint64_t>(pair_queries);
+          return hit;
+        },
+        lastValid);
+    counters_.addPairQueries(queries);
+  }
+  countOmpl(valid);
   return valid;
 }
 

@@ -35,12 +35,12 @@ InstalledChecker installArmHullCast(const ArmCheckerContext& c) {
 
 RigidChecker hullCastChecker() {
   return {"hull-cast",
-          "FCL states + Bullet's cast of each piece's hull at the edge's two end poses (MoveIt's; misses turns)",
+          "FCL states + Bullet's cast of each piece's hull between OMPL's states (Tesseract's; misses turns)",
           &installHullCast};
 }
 
 ArmChecker armHullCastChecker() {
-  return {"hull-cast", "FCL states + Bullet's cast of each link piece's hull at the edge's two ends (MoveIt's)",
+  return {"hull-cast", "FCL states + Bullet's cast of each link piece's hull between OMPL's states (Tesseract's)",
           &installArmHullCast};
 }
 

@@ -10,30 +10,36 @@
 //     tree, on the hull's bounding box) reports, with Bullet's GJK/EPA
 //     (btGjkEpaSolver2::Penetration); each world piece is a btConvexHullShape
 //     of its vertices (a mesh triangle is a flat hull of three points).
-//   - HullCastMotionValidator: an OMPL MotionValidator on it.
+//   - HullCastMotionValidator: an OMPL MotionValidator on it, built as
+//     Tesseract's continuous motion validator: the edge is cut into OMPL's
+//     validSegmentCount segments (the space's resolution, as the discrete
+//     validator's states); each segment's end state goes to si's state
+//     validity checker (FCL) and the cast runs between the segment's two
+//     end states.
 //   - ArmHullCastScene, ArmHullCastMotionValidator: the same cast for an arm
-//     (ArmScene): each checked link's pieces at the edge's two end
+//     (ArmScene): each checked link's pieces at the segment's two end
 //     configurations (forward kinematics), each piece's hull of both poses
 //     cast against the world pieces and, for the self pairs ArmScene checks,
-//     against the other link's swept piece hulls (MoveIt's Bullet plugin
-//     casts every link this way). A link turning about its joint sweeps an
-//     arc outside those hulls: the same miss as the rigid cast.
+//     against the other link's swept piece hulls; segments as above.
 //
 // The hull of the two end poses is the swept volume of a translation, so on
 // translating edges the check is exact up to Bullet's GJK tolerance. On a
-// rotating edge a point of the robot moves on an arc that leaves that hull
-// (a long link turning about one end sweeps the circular sector between its
-// end poses, the hull only the triangle), so a collision inside the arc and
-// outside the hull is MISSED: this validator is NOT sound on rotating edges.
-// It exists to measure that failure next to the certified MddMotionValidator
+// rotating segment a point of the robot moves on an arc that leaves that
+// hull (a long link turning about one end sweeps the circular sector between
+// its end poses, the hull only the triangle), so a collision inside the arc
+// and outside the hull is MISSED: this validator is NOT sound on rotating
+// edges. Segments shrink the sliver between arc and chord (its depth is
+// about r * a^2 / 8 for a turn of a radians at radius r) but do not close it:
+// a thin obstacle in it is still called free. The validator exists to
+// measure that failure next to the certified MddMotionValidator
 // (benchmarks/soundness, docs/results/soundness.md).
 //
-// lastValid: the cast cannot localise a contact, so on an invalid edge
-// lastValid is (copy of s1, 0), the only answer OMPL's contract allows
-// without a time of contact.
+// lastValid: on an invalid edge, the start of the first failing segment and
+// its fraction (Tesseract's answer); the cast gives no time of contact inside
+// a segment. An end outside the bounds gives (copy of s1, 0).
 //
 // Thread safety: the world's Bullet shapes are built once and only read; the
-// swept hulls are made per call.
+// swept hulls and the segment states are made per call.
 //
 // registerHullCastCheckers() adds the checker "hull-cast" to both benchmark
 // tables (checker_registry.h): FCL's state check with the cast for edges.
@@ -58,6 +64,12 @@ OMPL_CLASS_FORWARD(HullCastMotionValidator);
 OMPL_CLASS_FORWARD(ArmHullCastScene);
 OMPL_CLASS_FORWARD(ArmHullCastMotionValidator);
 
+/// Where the validators cast: between the end states of OMPL's segments
+/// (kResolution, Tesseract's motion validator, the planning peer) or once
+/// between the edge's two ends (kWholeEdge, MoveIt's cast between two
+/// states; the soundness suite measures both).
+enum class CastSegments { kResolution, kWholeEdge };
+
 /// Bullet's model of a robot and a world built from the same pieces (see above).
 class HullCastScene {
  public:
@@ -76,22 +88,26 @@ class HullCastScene {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Motion validity by the swept hull of the two end poses (see the file
-/// comment): exact on translations, misses contacts of rotating edges that
-/// leave the hull. Both ends must satisfy the space's bounds.
+/// Motion validity by swept hulls over OMPL's segments (see the file
+/// comment): exact on translations, misses contacts of rotating segments
+/// that leave their hull. Both ends must satisfy the space's bounds.
 class HullCastMotionValidator : public CountedMotionValidator {
  public:
   /// Throws InvalidInputError for a null argument or a mismatched state space.
   HullCastMotionValidator(const ompl::base::SpaceInformationPtr& si, PlanningSpacePtr space,
-                          std::shared_ptr<const HullCastScene> scene);
+                          std::shared_ptr<const HullCastScene> scene,
+                          CastSegments segments = CastSegments::kResolution);
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
-  /// On an invalid edge lastValid = (copy of s1, 0) (no time of contact).
+  /// On an invalid edge lastValid = the start of the first failing segment.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
  private:
+  bool check(const ompl::base::State* s1, const ompl::base::State* s2,
+             std::pair<ompl::base::State*, double>* lastValid) const;
   PlanningSpacePtr space_;
   std::shared_ptr<const HullCastScene> scene_;
+  CastSegments segments_;
 };
 
 /// The arm cast (see the file comment) over an ArmScene's links, world and
@@ -118,24 +134,28 @@ class ArmHullCastScene {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Motion validity of an arm edge by ArmHullCastScene::castCollides (edges
-/// under OMPL's interpolation, ArmSpace::edge); both ends must satisfy the
-/// bounds. Misses contacts of turning links outside the hulls (see above).
-/// Used with FclArmStateValidityChecker for the states.
+/// Motion validity of an arm edge by ArmHullCastScene::castCollides over
+/// OMPL's segments (under OMPL's interpolation, ArmSpace::edge); both ends
+/// must satisfy the bounds. Misses contacts of turning links outside the
+/// hulls (see above). Used with FclArmStateValidityChecker for the states.
 class ArmHullCastMotionValidator : public CountedMotionValidator {
  public:
   /// Throws InvalidInputError for a null argument, when si's state space is
   /// not space->stateSpace(), or the space's robot is not the scene's.
   ArmHullCastMotionValidator(const ompl::base::SpaceInformationPtr& si, ArmSpacePtr space,
-                             std::shared_ptr<const ArmHullCastScene> scene);
+                             std::shared_ptr<const ArmHullCastScene> scene,
+                             CastSegments segments = CastSegments::kResolution);
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2) const override;
-  /// On an invalid edge lastValid = (copy of s1, 0) (no time of contact).
+  /// On an invalid edge lastValid = the start of the first failing segment.
   bool checkMotion(const ompl::base::State* s1, const ompl::base::State* s2,
                    std::pair<ompl::base::State*, double>& lastValid) const override;
 
  private:
+  bool check(const ompl::base::State* s1, const ompl::base::State* s2,
+             std::pair<ompl::base::State*, double>* lastValid) const;
   ArmSpacePtr space_;
   std::shared_ptr<const ArmHullCastScene> scene_;
+  CastSegments segments_;
 };
 
 /// Appends the "hull-cast" entries to the checker tables (addRigidChecker;

@@ -86,15 +86,26 @@ bool castSegments(const ob::SpaceInformation& si, CastSegments segments, const o
   return valid;
 }
 
-/// The hull of `vertices` (frame L) placed at X_a and at X_b.
-std::unique_ptr<LocalHull> sweptHull(const std::vector<Eigen::Vector3d>& vertices, const Eigen::Isometry3d& X_a,
-                                     const Eigen::Isometry3d& X_b) {
+/// A piece swept between two poses: its vertices at both (world frame) and
+/// their box, with the Bullet hull made only when a broad phase candidate
+/// needs it (most swept pieces meet no world box, and a hull of hundreds of
+/// points costs far more than its box).
+struct SweptPiece {
   std::vector<Eigen::Vector3d> points;
-  points.reserve(2 * vertices.size());
-  for (const Eigen::Vector3d& v : vertices) points.push_back(X_a * v);
-  for (const Eigen::Vector3d& v : vertices) points.push_back(X_b * v);
-  return std::make_unique<LocalHull>(points);
-}
+  Eigen::AlignedBox3d box;
+  std::unique_ptr<LocalHull> hull;
+
+  SweptPiece(const std::vector<Eigen::Vector3d>& vertices, const Eigen::Isometry3d& X_a, const Eigen::Isometry3d& X_b) {
+    points.reserve(2 * vertices.size());
+    for (const Eigen::Vector3d& v : vertices) points.push_back(X_a * v);
+    for (const Eigen::Vector3d& v : vertices) points.push_back(X_b * v);
+    for (const Eigen::Vector3d& p : points) box.extend(p);
+  }
+  const LocalHull& shape() {
+    if (!hull) hull = std::make_unique<LocalHull>(points);
+    return *hull;
+  }
+};
 
 }  // namespace
 
@@ -122,12 +133,12 @@ bool HullCastScene::castCollides(const Eigen::Isometry3d& X_a, const Eigen::Isom
   bool hit = false;
   std::vector<int> candidates;
   for (const scene::Piece& piece : impl_->robot->pieces()) {
-    const std::unique_ptr<LocalHull> hull = sweptHull(piece.polytope.vertices(), X_a, X_b);
+    SweptPiece swept(piece.polytope.vertices(), X_a, X_b);
     candidates.clear();
-    impl_->world->candidates(hull->box, &candidates);
+    impl_->world->candidates(swept.box, &candidates);
     for (int index : candidates) {
       ++queries;
-      if (overlap(*hull, *impl_->world_hulls[static_cast<std::size_t>(index)])) {
+      if (overlap(swept.shape(), *impl_->world_hulls[static_cast<std::size_t>(index)])) {
         hit = true;
         break;
       }
@@ -167,29 +178,29 @@ bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmConta
   std::vector<Eigen::Isometry3d> X0, X1;
   scene_->linkPoses(q0, &X0);
   scene_->linkPoses(q1, &X1);
-  // Each link's swept piece hulls, made when a pair first needs them.
-  std::vector<std::vector<std::unique_ptr<LocalHull>>> swept(static_cast<std::size_t>(m.numLinks()));
-  const auto hullsOf = [&](int k) -> const std::vector<std::unique_ptr<LocalHull>>& {
-    auto& hulls = swept[static_cast<std::size_t>(k)];
-    if (hulls.empty()) {
+  // Each link's swept pieces, made when a pair first needs them.
+  std::vector<std::vector<SweptPiece>> swept(static_cast<std::size_t>(m.numLinks()));
+  const auto sweptOf = [&](int k) -> std::vector<SweptPiece>& {
+    auto& pieces = swept[static_cast<std::size_t>(k)];
+    if (pieces.empty()) {
       for (const scene::Piece& piece : m.link(k).pieces) {
-        hulls.push_back(
-            sweptHull(piece.polytope.vertices(), X0[static_cast<std::size_t>(k)], X1[static_cast<std::size_t>(k)]));
+        pieces.emplace_back(piece.polytope.vertices(), X0[static_cast<std::size_t>(k)],
+                            X1[static_cast<std::size_t>(k)]);
       }
     }
-    return hulls;
+    return pieces;
   };
   int queries = 0;
   ArmContact contact;
   bool hit = false;
   std::vector<int> candidates;
   for (int k : impl_->world_links) {
-    for (const auto& hull : hullsOf(k)) {
+    for (SweptPiece& piece : sweptOf(k)) {
       candidates.clear();
-      scene_->world().candidates(hull->box, &candidates);
+      scene_->world().candidates(piece.box, &candidates);
       for (int index : candidates) {
         ++queries;
-        if (overlap(*hull, *impl_->world_hulls[static_cast<std::size_t>(index)])) {
+        if (overlap(piece.shape(), *impl_->world_hulls[static_cast<std::size_t>(index)])) {
           contact.link = k;
           contact.world_piece = index;
           hit = true;
@@ -202,11 +213,11 @@ bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmConta
   }
   for (std::size_t p = 0; !hit && p < scene_->selfPairs().size(); ++p) {
     const auto [k, l] = scene_->selfPairs()[p];
-    for (const auto& a : hullsOf(k)) {
-      for (const auto& b : hullsOf(l)) {
-        if (!a->box.intersects(b->box)) continue;
+    for (SweptPiece& a : sweptOf(k)) {
+      for (SweptPiece& b : sweptOf(l)) {
+        if (!a.box.intersects(b.box)) continue;
         ++queries;
-        if (overlap(*a, *b)) {
+        if (overlap(a.shape(), b.shape())) {
           contact.link = k;
           contact.other_link = l;
           hit = true;

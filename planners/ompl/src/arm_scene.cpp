@@ -332,21 +332,19 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
   }
   // No node pair moves faster than the pair's bound R.
   const double rate_max = pairRate(static_cast<int>(&p - pairs_.data()), w.dq.data()) * (1.0 + kRateSlackRel);
-  // How fast (world units per unit t) a point of a ball (centre c_W, radius
-  // r) of a side can move while |t - probe| <= tau: per joint, its speed
-  // times the ball's distance from the joint's axis now, plus how far the
-  // later joints can carry the ball meanwhile, and never more than the
-  // joint's reach (docs/design/arms.md).
+  // How far (world units per unit |t - probe|) a point of a ball (centre
+  // c_W, radius r) of a side can get from where it is at the probe: per
+  // joint, its speed times the ball's distance from the joint's axis at the
+  // probe, never more than the joint's reach. Turning the joints one after
+  // the other from the root, each turn moves the point by at most its angle
+  // times the point's distance from that axis at the probe, whatever the
+  // later joints do (docs/design/arms.md).
   const auto rate = [&](const Moving& m, int node, const Eigen::Vector3d& c_W, double r) {
     if (m.movers == nullptr) return 0.0;
     double& cached = (*m.rates)[static_cast<std::size_t>(node)];
     if (cached >= 0.0) return cached;
-    // From the last joint back: `carried` bounds how far the joints after
-    // joint i can carry the ball in frame i while |t - probe| <= tau, so the
-    // ball stays within dist(c, axis_i) + r + carried of axis i.
     double rho = 0.0;
-    double carried = 0.0;
-    for (std::size_t i = m.movers->size(); i-- > 0;) {
+    for (std::size_t i = 0; i < m.movers->size(); ++i) {
       const Mover& mv = (*m.movers)[i];
       const double speed = m.scratch->speed[i];
       if (speed == 0.0) continue;
@@ -354,10 +352,9 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse)
       if (!mv.prismatic) {
         const std::size_t j = static_cast<std::size_t>(mv.joint);
         const Eigen::Vector3d v = c_W - w.at->o_W[j];
-        arm = std::min(mv.reach, (v - v.dot(w.at->u_W[j]) * w.at->u_W[j]).norm() + r + carried);
+        arm = std::min(mv.reach, (v - v.dot(w.at->u_W[j]) * w.at->u_W[j]).norm() + r);
       }
       rho += speed * arm;
-      carried += tau * speed * arm;
     }
     cached = rho * (1.0 + kRateSlackRel);
     return cached;

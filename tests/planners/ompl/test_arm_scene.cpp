@@ -122,6 +122,52 @@ TEST(ArmScene, EdgeChecksAreCertified) {
   std::printf("arm7 edges: %d colliding, %d free, %d false alarms\n", colliding, free_edges, false_alarms);
 }
 
+// Every joint of arm7 turning fast at once (random start and end
+// configurations), with a 1 cm box at a vertex of a link where that vertex
+// is at a random time t*: the edge collides at t* at the latest, and the
+// certified check must say so. The ball rates bound each point's
+// displacement from its place at a probe (docs/design/arms.md); here the
+// obstacle sits on a point's path as the later joints swing it away from
+// the earlier joints' axes, where a bound on its speed would grow.
+TEST(ArmScene, FastEdgesThroughABoxOnTheirPathAreCertified) {
+  const ArmFixture f = makeArm();
+  const scene::RobotModel& m = *f.model;
+  std::vector<int> links;
+  for (int k = 0; k < m.numLinks(); ++k) {
+    if (!m.link(k).pieces.empty()) links.push_back(k);
+  }
+  Rng rng(testing::seed() + 2);
+  std::uniform_real_distribution<double> when(0.2, 0.8);
+  const int n = 40 * testing::scale();
+  int sampled = 0, tried = 0;
+  while (sampled < n) {
+    ASSERT_LT(++tried, 100 * n) << "too few edges with free ends";
+    const std::vector<double> q0 = randomConfiguration(m, rng), q1 = randomConfiguration(m, rng);
+    const double t_star = when(rng);
+    std::vector<double> q(q0.size());
+    for (std::size_t v = 0; v < q.size(); ++v) q[v] = q0[v] + t_star * (q1[v] - q0[v]);
+    std::vector<Eigen::Isometry3d> X_WL;
+    m.linkPoses(q.data(), &X_WL);
+    const int k = links[std::uniform_int_distribution<std::size_t>(0, links.size() - 1)(rng)];
+    const auto& pieces = m.link(k).pieces;
+    const auto& piece = pieces[std::uniform_int_distribution<std::size_t>(0, pieces.size() - 1)(rng)];
+    const auto& vertices = piece.polytope.vertices();
+    const Eigen::Vector3d p_W = X_WL[static_cast<std::size_t>(k)] *
+                                vertices[std::uniform_int_distribution<std::size_t>(0, vertices.size() - 1)(rng)];
+    std::vector<scene::Piece> world{
+        scene::boxPiece(Eigen::Vector3d::Constant(0.005), Eigen::Isometry3d(Eigen::Translation3d(p_W)), "box")};
+    const ArmScene s(f.model, std::make_shared<const scene::World>(std::move(world), "box"), f.scene->filter());
+    if (s.collides(q0.data()) || s.collides(q1.data())) continue;
+    ASSERT_TRUE(s.collides(q.data()));  // the vertex is inside the box at t*
+    ++sampled;
+    const ArmEdgeResult validity = s.checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity);
+    ASSERT_TRUE(validity.collides) << "edge " << sampled << " missed (in the box at t* = " << t_star << ")";
+    const ArmEdgeResult first = s.checkEdge(q0.data(), q1.data(), EdgeQuery::kFirstContact);
+    ASSERT_TRUE(first.collides);
+    EXPECT_LE(first.fraction, t_star) << "edge " << sampled;
+  }
+}
+
 TEST(ArmScene, RejectsBadInput) {
   const ArmFixture f = makeArm();
   EXPECT_THROW(ArmScene(nullptr, armWorld(), scene::AllowedCollisions()), InvalidInputError);

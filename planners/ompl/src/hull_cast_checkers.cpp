@@ -154,7 +154,25 @@ bool HullCastScene::castCollides(const Eigen::Isometry3d& X_a, const Eigen::Isom
 struct ArmHullCastScene::Impl {
   std::vector<std::unique_ptr<LocalHull>> world_hulls;  ///< one per world piece, same index
   std::vector<int> world_links;                         ///< links checked against the world
+  std::vector<Eigen::AlignedBox3d> link_boxes;          ///< each link's pieces' box (link frame)
 };
+
+namespace {
+
+/// The box of `box` (frame L) placed at X_a and at X_b: the broad phase of a
+/// whole link, as a collision library's per-object bounds.
+Eigen::AlignedBox3d sweptBox(const Eigen::AlignedBox3d& box, const Eigen::Isometry3d& X_a,
+                             const Eigen::Isometry3d& X_b) {
+  Eigen::AlignedBox3d out;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    out.extend(X_a * corner);
+    out.extend(X_b * corner);
+  }
+  return out;
+}
+
+}  // namespace
 
 ArmHullCastScene::ArmHullCastScene(std::shared_ptr<const ArmScene> scene)
     : scene_(std::move(scene)), impl_(std::make_unique<Impl>()) {
@@ -168,6 +186,10 @@ ArmHullCastScene::ArmHullCastScene(std::shared_ptr<const ArmScene> scene)
     if (!m.link(k).pieces.empty() && !impl_->world_hulls.empty() && !scene_->filter().allowedWithWorld(k)) {
       impl_->world_links.push_back(k);
     }
+  }
+  impl_->link_boxes.resize(static_cast<std::size_t>(m.numLinks()));
+  for (int k = 0; k < m.numLinks(); ++k) {
+    for (const scene::Piece& piece : m.link(k).pieces) impl_->link_boxes[static_cast<std::size_t>(k)].extend(piece.box);
   }
 }
 
@@ -194,7 +216,15 @@ bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmConta
   ArmContact contact;
   bool hit = false;
   std::vector<int> candidates;
+  const auto linkBox = [&](int k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    return sweptBox(impl_->link_boxes[i], X0[i], X1[i]);
+  };
   for (int k : impl_->world_links) {
+    // The whole link first: most links meet no world box.
+    candidates.clear();
+    scene_->world().candidates(linkBox(k), &candidates);
+    if (candidates.empty()) continue;
     for (SweptPiece& piece : sweptOf(k)) {
       candidates.clear();
       scene_->world().candidates(piece.box, &candidates);
@@ -213,6 +243,7 @@ bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmConta
   }
   for (std::size_t p = 0; !hit && p < scene_->selfPairs().size(); ++p) {
     const auto [k, l] = scene_->selfPairs()[p];
+    if (!linkBox(k).intersects(linkBox(l))) continue;
     for (SweptPiece& a : sweptOf(k)) {
       for (SweptPiece& b : sweptOf(l)) {
         if (!a.box.intersects(b.box)) continue;

@@ -2,11 +2,13 @@
 # An arm's MotionBenchMaker problem sets (configs/<robot>/problems) with `mddual
 # bench`: the certified arm checker (mdd) against FCL with OMPL's discrete
 # validator at its default resolution (fcl) and at 1/32 rad (fcl-fine),
-# RRT-Connect and BKPIECE, the same runs, limits and seed for all three;
+# and the Bullet hull cast (hull-cast) when built with Bullet, RRT-Connect
+# and BKPIECE, the same runs, limits and seed for all;
 # every solution verified. Builds mddual (Release, build/release), writes
 # out/bench-arms/<set>/ (logs, bench.db, plots, summary.md) and
 # docs/results/arms.md (every set's summary table, with this command and the
-# build).
+# build), then the README's arm table from every robot's page
+# (scripts/arm_headline.py).
 #
 #   scripts/run-arm-bench.sh [SET ...]
 #   MDDUAL_ARM_ROBOT=panda scripts/run-arm-bench.sh [SET ...]
@@ -70,3 +72,6 @@ for s in "${sets[@]}"; do
 done
 cp "$table" "$results"
 echo "run-arm-bench: $results"
+# The README's arm table: the RRT-Connect rows of every robot's page.
+python3 scripts/arm_headline.py
+echo "run-arm-bench: README.md (arm table)"

@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""The README's arm table, from the pages scripts/run-arm-bench.sh writes.
+
+Reads the summary tables of docs/results/arms.md (arm7) and
+docs/results/panda.md (the Panda), keeps the rows of one planner
+(RRTConnectkConfigDefault unless --planner says otherwise) and writes one
+line per (robot, problem set): success, median planning time and invalid
+solutions for each checker, between the markers `<!-- arms:begin -->` and
+`<!-- arms:end -->` of README.md (--readme names another file; --readme -
+prints to standard output). A page that is missing is skipped; none at all
+is an error.
+
+    scripts/arm_headline.py [--results docs/results/arms.md ...] [--planner NAME] [--readme FILE|-]
+"""
+
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import readme_markers  # noqa: E402
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+HEADER = ("| config | planner | checker | runs | success | median time (s) | time / FCL | solved time (s) | "
+          "checking | state checks | motion checks | invalid | invalid raw |")
+CHECKERS = ["mdd", "fcl", "fcl-fine", "hull-cast"]
+
+
+def read_page(path):
+    """The robot named in the page's title, its "Made by" line and its rows (lists of cells)."""
+    with open(path) as f:
+        lines = [line.rstrip("\n") for line in f]
+    if not lines or not lines[0].startswith("# ") or " on its MotionBenchMaker problem sets" not in lines[0]:
+        raise SystemExit("arm_headline: %s: not a page of scripts/run-arm-bench.sh (its title)" % path)
+    robot = lines[0][2:].split(" ")[0]
+    made = next((line for line in lines if line.startswith("Made by ")), None)
+    if made is None:
+        raise SystemExit("arm_headline: %s: no \"Made by\" line" % path)
+    rows = []
+    in_table = False
+    for number, line in enumerate(lines, 1):
+        if line == HEADER:
+            in_table = True
+            continue
+        in_table = in_table and line.startswith("|")
+        if not in_table or line.startswith("|---"):
+            continue
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 13:
+            raise SystemExit("arm_headline: %s:%d: not a row of 13 cells" % (path, number))
+        rows.append(cells)
+    if not rows:
+        raise SystemExit("arm_headline: %s: no summary table" % path)
+    return robot, made, rows
+
+
+def headline(pages, planner):
+    checkers = [c for c in CHECKERS if any(r[2] == c for _, _, rows in pages for r in rows)]
+    joined = " / ".join(checkers)
+    lines = ["| robot, set | success %s | median time (s) %s | invalid solutions %s |" % (joined, joined, joined),
+             "|---|---|---|---|"]
+    for robot, _, rows in pages:
+        sets = []
+        for r in rows:
+            if r[1] == planner and r[0] not in sets:
+                sets.append(r[0])
+        for s in sets:
+            by = {r[2]: r for r in rows if r[0] == s and r[1] == planner}
+            cell = lambda i: " / ".join(by[c][i] if c in by else "-" for c in checkers)  # noqa: E731
+            lines.append("| %s, %s | %s | %s | %s |" % (robot, s, cell(4), cell(5), cell(11)))
+    if len(lines) == 2:
+        raise SystemExit("arm_headline: no row of planner %s" % planner)
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--results", nargs="+", default=[os.path.join(ROOT, "docs", "results", "arms.md"),
+                                                          os.path.join(ROOT, "docs", "results", "panda.md")])
+    parser.add_argument("--planner", default="RRTConnectkConfigDefault")
+    parser.add_argument("--readme", default=os.path.join(ROOT, "README.md"))
+    args = parser.parse_args()
+    pages = [read_page(p) for p in args.results if os.path.exists(p)]
+    if not pages:
+        raise SystemExit("arm_headline: none of %s exists" % ", ".join(args.results))
+    made = "; ".join("%s: %s" % (robot, line[len("Made by "):].split(" on ")[0]) for robot, line, _ in pages)
+    text = "\n".join(["Made by `scripts/arm_headline.py` from the %s rows of docs/results (%s)." % (args.planner, made),
+                      ""] + headline(pages, args.planner)) + "\n"
+    readme_markers.replace_between(args.readme, "<!-- arms:begin -->", "<!-- arms:end -->", text, "arm_headline")
+
+
+if __name__ == "__main__":
+    main()

@@ -55,7 +55,7 @@ command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_RUNS=$runs MDDUAL_ARM_LIMIT=$l
     "$(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')); seed 1."
   echo "Checkers: mdd (certified arm edges), fcl (FCL states, OMPL's discrete validator at its default"
   echo "resolution), fcl-fine (the same at 1/32 rad), and hull-cast (FCL states, Bullet casts of each link"
-  echo "piece's hull between the edge's end poses) when built with Bullet. A run without a verified"
+  echo "piece's hull between states at OMPL's resolution) when built with Bullet. A run without a verified"
   echo "solution counts at the limit."
   echo
 } > "$table"

@@ -1,11 +1,14 @@
 // URDF files through urdfdom: every collision element of every link, at the
 // link's pose with all joints fixed at their origins.
 #include <console_bridge/console.h>
+#include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
 #include <cctype>
+#include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -48,9 +51,50 @@ std::mutex& parseMutex() {
 /// more NULs every such step still lands on a NUL inside the string.
 constexpr std::size_t kXmlParserPadding = 4;
 
+/// Refuses a joint graph with a loop before urdfdom sees it: urdfdom links a
+/// joint's child into its parent's children with shared pointers, so a joint
+/// whose parent is its own child, or a chain of joints back to a link above,
+/// makes a reference cycle that it leaks when it then rejects the file
+/// (found by fuzz_urdf; fuzz/findings/urdf-joint-loop), and a link with two
+/// parent joints hangs its tree building. Text that is not well-formed XML
+/// is left to urdfdom's message.
+void requireJointTree(const std::filesystem::path& file, const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) return;
+  const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
+  if (robot == nullptr) return;
+  std::map<std::string, std::pair<std::string, std::string>> parent_of;  // child -> (parent, joint)
+  for (const tinyxml2::XMLElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
+    const tinyxml2::XMLElement* parent = j->FirstChildElement("parent");
+    const tinyxml2::XMLElement* child = j->FirstChildElement("child");
+    const char* p = parent ? parent->Attribute("link") : nullptr;
+    const char* c = child ? child->Attribute("link") : nullptr;
+    if (p == nullptr || c == nullptr) continue;  // urdfdom names what is missing
+    const std::string name = j->Attribute("name") ? j->Attribute("name") : "";
+    const std::string where = display(file) + ":" + std::to_string(j->GetLineNum()) + ": joint '" + name + "'";
+    if (std::string(p) == c) throw SceneError(where + ": its parent and child are the same link '" + p + "'");
+    const auto [it, added] = parent_of.emplace(c, std::make_pair(std::string(p), name));
+    if (!added) {
+      throw SceneError(where + ": link '" + c + "' is already the child of joint '" + it->second.second +
+                       "' (a link has one parent joint)");
+    }
+  }
+  // Follow each link's parents up; a link met twice closes a loop.
+  for (const auto& [start, unused] : parent_of) {
+    std::set<std::string> seen{start};
+    for (auto it = parent_of.find(start); it != parent_of.end(); it = parent_of.find(it->second.first)) {
+      if (!seen.insert(it->second.first).second) {
+        throw SceneError(display(file) + ": the joints form a loop through link '" + it->second.first + "' (joint '" +
+                         it->second.second + "'): a URDF robot is a tree");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 urdf::ModelInterfaceSharedPtr parseUrdf(const std::filesystem::path& file, std::string xml) {
+  requireJointTree(file, xml);
   xml.append(kXmlParserPadding, '\0');
   std::lock_guard<std::mutex> lock(parseMutex());
   CaptureHandler capture;

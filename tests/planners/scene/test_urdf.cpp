@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mddual/scene/loaders.h"
+#include "mddual/scene/robot_model.h"
 #include "scene_test_util.h"
 
 namespace mddual::scene {
@@ -203,6 +204,45 @@ TEST(UrdfErrors, TruncatedUtf8AtTheEndIsAnErrorNotAnOverread) {
                                                  "<collision><geometry><box size=\"1 1 1\"/></geometry></collision>"
                                                  "</link></robot>");
   EXPECT_EQ(loadBody(named).pieces().size(), 1u);
+}
+
+// fuzz_urdf: a joint whose parent is its own child made urdfdom link the
+// link into its own children (shared pointers) and leak the cycle when it
+// then rejected the file (fuzz/findings/urdf-joint-loop, under LeakSanitizer).
+// The loader refuses a joint loop before urdfdom sees the file, naming the
+// joint; a loop through three joints and a link with two parent joints (on
+// which urdfdom hangs) are refused the same way.
+TEST(UrdfErrors, JointLoopsAreRefusedBeforeUrdfdom) {
+  TempDir dir;
+  const std::string links = R"(<link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
+<link name="b"/><link name="c"/>)";
+  const auto self = dir.write("self.urdf", "<robot name=\"r\">\n" + links + R"(
+<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+<joint name="j2" type="revolute"><parent link="b"/><child link="b"/><axis xyz="0 0 1"/>
+  <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+</robot>)");
+  expectSceneError([&] { loadRobotModel(self); },
+                   {"self.urdf:5: joint 'j2'", "parent and child are the same link 'b'"});
+  expectSceneError([&] { loadBody(self); }, {"self.urdf:5: joint 'j2'"});
+  const auto loop = dir.write("loop.urdf", "<robot name=\"r\">\n" + links + R"(
+<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+<joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
+<joint name="j3" type="fixed"><parent link="c"/><child link="a"/></joint>
+</robot>)");
+  expectSceneError([&] { loadRobotModel(loop); }, {"loop.urdf", "the joints form a loop", "a URDF robot is a tree"});
+  const auto two = dir.write("two.urdf", "<robot name=\"r\">\n" + links + R"(
+<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+<joint name="j2" type="fixed"><parent link="b"/><child link="c"/></joint>
+<joint name="j3" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>)");
+  expectSceneError([&] { loadRobotModel(two); },
+                   {"two.urdf:6: joint 'j3'", "link 'c' is already the child of joint 'j2'"});
+  // A tree is untouched by the check.
+  const auto tree = dir.write("tree.urdf", "<robot name=\"r\">\n" + links + R"(
+<joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+<joint name="j2" type="fixed"><parent link="a"/><child link="c"/></joint>
+</robot>)");
+  EXPECT_EQ(loadRobotModel(tree).numLinks(), 3);
 }
 
 TEST(UrdfErrors, MissingFile) {

@@ -54,10 +54,18 @@ bool overlap(const LocalHull& a, const LocalHull& b) {
 /// state is valid (si's state validity checker: FCL, self pairs included) and
 /// `collides(start, end)` (the cast between its end states) is false. On the
 /// first failing segment lastValid (when given) is its start state and
-/// fraction. Returns whether every segment is valid.
+/// fraction; an end outside the bounds fails the edge at (s1, 0). Returns
+/// whether every segment is valid.
 template <class Cast>
 bool castSegments(const ob::SpaceInformation& si, CastSegments segments, const ob::State* s1, const ob::State* s2,
                   const Cast& collides, std::pair<ob::State*, double>* lastValid) {
+  if (!si.satisfiesBounds(s1) || !si.satisfiesBounds(s2)) {
+    if (lastValid) {
+      if (lastValid->first) si.copyState(lastValid->first, s1);
+      lastValid->second = 0.0;
+    }
+    return false;
+  }
   const ob::StateSpace& space = *si.getStateSpace();
   const unsigned n = segments == CastSegments::kWholeEdge ? 1u : std::max(1u, space.validSegmentCount(s1, s2));
   ob::State* start = si.allocState();
@@ -216,10 +224,12 @@ bool ArmHullCastScene::castCollides(const double* q0, const double* q1, ArmConta
   ArmContact contact;
   bool hit = false;
   std::vector<int> candidates;
-  const auto linkBox = [&](int k) {
-    const std::size_t i = static_cast<std::size_t>(k);
-    return sweptBox(impl_->link_boxes[i], X0[i], X1[i]);
-  };
+  // Each link's box at both poses, once per call (a link is in many self pairs).
+  std::vector<Eigen::AlignedBox3d> link_boxes(static_cast<std::size_t>(m.numLinks()));
+  for (std::size_t i = 0; i < link_boxes.size(); ++i) {
+    if (!impl_->link_boxes[i].isEmpty()) link_boxes[i] = sweptBox(impl_->link_boxes[i], X0[i], X1[i]);
+  }
+  const auto linkBox = [&](int k) -> const Eigen::AlignedBox3d& { return link_boxes[static_cast<std::size_t>(k)]; };
   for (int k : impl_->world_links) {
     // The whole link first: most links meet no world box.
     candidates.clear();
@@ -295,27 +305,20 @@ bool ArmHullCastMotionValidator::check(const ob::State* s1, const ob::State* s2,
   if (s1 == nullptr || s2 == nullptr) throw InvalidInputError("ArmHullCastMotionValidator: a null state");
   CheckerCounters::Timer timer(counters_);
   counters_.addMotionCheck();
-  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
-  if (!valid && lastValid) {
-    if (lastValid->first) si_->copyState(lastValid->first, s1);
-    lastValid->second = 0.0;
-  }
-  if (valid) {
-    const std::size_t n = space_->fixedConfiguration().size();
-    std::vector<double> q0(n), q1(n);
-    std::uint64_t queries = 0;
-    valid = castSegments(
-        *si_, segments_, s1, s2,
-        [&](const ob::State* a, const ob::State* b) {
-          space_->edge(a, b, q0.data(), q1.data());
-          int pair_queries = 0;
-          const bool hit = scene_->castCollides(q0.data(), q1.data(), nullptr, &pair_queries);
-          queries += static_cast<std::uint64_t>(pair_queries);
-          return hit;
-        },
-        lastValid);
-    counters_.addPairQueries(queries);
-  }
+  const std::size_t n = space_->fixedConfiguration().size();
+  std::vector<double> q0(n), q1(n);
+  std::uint64_t queries = 0;
+  const bool valid = castSegments(
+      *si_, segments_, s1, s2,
+      [&](const ob::State* a, const ob::State* b) {
+        space_->edge(a, b, q0.data(), q1.data());
+        int pair_queries = 0;
+        const bool hit = scene_->castCollides(q0.data(), q1.data(), nullptr, &pair_queries);
+        queries += static_cast<std::uint64_t>(pair_queries);
+        return hit;
+      },
+      lastValid);
+  counters_.addPairQueries(queries);
   countOmpl(valid);
   return valid;
 }
@@ -341,24 +344,17 @@ bool HullCastMotionValidator::check(const ob::State* s1, const ob::State* s2,
                                     std::pair<ob::State*, double>* lastValid) const {
   CheckerCounters::Timer timer(counters_);
   counters_.addMotionCheck();
-  bool valid = si_->satisfiesBounds(s1) && si_->satisfiesBounds(s2);
-  if (!valid && lastValid) {
-    if (lastValid->first) si_->copyState(lastValid->first, s1);
-    lastValid->second = 0.0;
-  }
-  if (valid) {
-    std::uint64_t queries = 0;
-    valid = castSegments(
-        *si_, segments_, s1, s2,
-        [&](const ob::State* a, const ob::State* b) {
-          int pair_queries = 0;
-          const bool hit = scene_->castCollides(space_->pose(a), space_->pose(b), &pair_queries);
-          queries += static_cast<std::uint64_t>(pair_queries);
-          return hit;
-        },
-        lastValid);
-    counters_.addPairQueries(queries);
-  }
+  std::uint64_t queries = 0;
+  const bool valid = castSegments(
+      *si_, segments_, s1, s2,
+      [&](const ob::State* a, const ob::State* b) {
+        int pair_queries = 0;
+        const bool hit = scene_->castCollides(space_->pose(a), space_->pose(b), &pair_queries);
+        queries += static_cast<std::uint64_t>(pair_queries);
+        return hit;
+      },
+      lastValid);
+  counters_.addPairQueries(queries);
   countOmpl(valid);
   return valid;
 }

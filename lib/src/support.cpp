@@ -171,7 +171,35 @@ int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportSt
   return supportVertexHillClimb(d_P, start, stats, gap);
 }
 
+namespace {
+/// Polytopes of at most this many vertices are scanned whole: cheaper than
+/// the table and the climb (boxes, triangles, small hulls). On arm7's motion
+/// checks (mddual_bench_arm_edges, bookshelf_thin and cage) 16 took 7% fewer
+/// instructions than the climb alone, 12 and 32 less than 5%.
+constexpr int kScanVertices = 16;
+}  // namespace
+
 int ConvexPolytope::supportVertex(const Eigen::Vector3d& d_P, int hint, SupportStats* stats, double* gap) const {
+  // Small polytopes: every vertex (the hint cannot save anything).
+  if (numVertices() <= kScanVertices) {
+    if (hint >= numVertices()) throwVertexOutOfRange("supportVertex: hint", hint, numVertices());
+    int best = 0;
+    double best_value = d_P.dot(vertices_L_[0]);
+    for (int v = 1; v < numVertices(); ++v) {
+      const double value = d_P.dot(vertices_L_[v]);
+      if (value > best_value) {
+        best_value = value;
+        best = v;
+      }
+    }
+    if (stats != nullptr) stats->vertices_visited += numVertices();
+    if (gap != nullptr) {
+      double runner_up = -std::numeric_limits<double>::infinity();
+      for (int w : vertexNeighbors(best)) runner_up = std::max(runner_up, d_P.dot(vertices_L_[w]));
+      *gap = best_value - runner_up;
+    }
+    return best;
+  }
   // Start from the better of the hint and the direction table's vertex: the
   // hint wins for coherent queries, the table when the direction moved far
   // (or when there is no hint); the climb then makes the answer exact.

@@ -5,7 +5,11 @@ pybind11 puts each function's signature (argument names, types, defaults) in
 the first line of its docstring; this reads them, with the classes, their
 methods and properties, the exceptions and the module's constants, and emits
 a .pyi with the docstrings. Types pybind11 cannot name (a C++ type without a
-binding) become Any, NumPy arrays numpy.ndarray, and defaults `...`.
+binding) become Any, NumPy arrays numpy.typing.NDArray of their dtype, paths
+str | os.PathLike[str] as arguments and pathlib.Path as results, and defaults
+`...`. The arguments and results the bindings take or give as Python objects
+(NumPy array-likes, links by name or index) are named by the bindings
+themselves (python/src/typed.h), so help() shows the same types.
 
     PYTHONPATH=build/release/python python3 scripts/gen_stubs.py            # writes the stub
     PYTHONPATH=build/release/python python3 scripts/gen_stubs.py --check    # fails when it is stale
@@ -31,6 +35,7 @@ HEADER = '''{doc}
 from typing import Any, Callable, Iterable, Iterator, Optional, Sequence, Union, overload
 
 import os
+import pathlib
 
 import numpy
 import numpy.typing
@@ -76,8 +81,8 @@ def strip_subscript(text, start):
     return len(text)
 
 
-def clean_type(t, module_name):
-    """A pybind11 type name as a stub annotation."""
+def clean_type(t, module_name, result=False):
+    """A pybind11 type name as a stub annotation (of a result when `result`)."""
     t = t.strip()
     if "::" in t or not t:
         return "Any"
@@ -94,9 +99,11 @@ def clean_type(t, module_name):
         i += 1
     t = "".join(out)
     t = re.sub(r"\b" + re.escape(module_name) + r"\.", "", t)
-    for old, new in (("List", "list"), ("Dict", "dict"), ("Tuple", "tuple"), ("Set", "set")):
+    # pybind11's std::vector (List[...]) takes any sequence but str and gives a list.
+    for old, new in (("List", "list" if result else "Sequence"), ("Dict", "dict"), ("Tuple", "tuple"), ("Set", "set")):
         t = re.sub(r"\b" + old + r"\[", new + "[", t)
-    t = re.sub(r"\bos\.PathLike\b(?!\[)", "os.PathLike[str]", t)
+    # pybind11's std::filesystem::path: takes str and os.PathLike, gives pathlib.Path.
+    t = re.sub(r"\bos\.PathLike\b(?!\[)", "pathlib.Path" if result else "str | os.PathLike[str]", t)
     # Bare generics (py::dict, py::list, py::tuple) with their parameters, as type checkers want.
     for bare, full in (("dict", "dict[Any, Any]"), ("list", "list[Any]"), ("tuple", "tuple[Any, ...]")):
         t = re.sub(r"(?<![\w.])" + bare + r"\b(?!\[)", full, t)
@@ -122,7 +129,7 @@ def parse_signature(line, module_name):
             args.append((name.strip(), clean_type(ann, module_name), default))
         else:
             args.append((part.strip(), None, default))
-    ret = clean_type(m.group(3), module_name) if m.group(3) else "None"
+    ret = clean_type(m.group(3), module_name, result=True) if m.group(3) else "None"
     return m.group(1), args, ret
 
 
@@ -210,7 +217,7 @@ def property_type(prop, module_name):
     rest = "\n".join(doc.splitlines()[1:]).strip() if m else doc.strip()
     if prop.__doc__ and prop.__doc__ != doc:
         rest = prop.__doc__.strip()
-    return (clean_type(m.group(1), module_name) if m else "Any"), rest
+    return (clean_type(m.group(1), module_name, result=True) if m else "Any"), rest
 
 
 def value_type(value):

@@ -20,6 +20,7 @@
 #include "mddual/planning/arm_problem.h"
 #include "mddual/planning/arm_scene.h"
 #include "planning_convert.h"
+#include "typed.h"
 
 namespace mddual::python {
 namespace {
@@ -31,8 +32,8 @@ struct ArmSceneHandle {
   std::shared_ptr<scene::RobotModel> model;
   std::shared_ptr<const mp::ArmScene> scene;
 
-  static ArmSceneHandle make(const std::shared_ptr<scene::RobotModel>& model, const py::object& world,
-                             const py::object& allowed, const py::object& X_WB, double contact_distance,
+  static ArmSceneHandle make(const std::shared_ptr<scene::RobotModel>& model, const PolytopesArg& world,
+                             const AllowedArg& allowed, const ArrayLikeOrNoneArg& X_WB, double contact_distance,
                              int max_depth) {
     if (!model) throw py::type_error("model: expected a RobotModel, got None");
     std::vector<scene::Piece> pieces;
@@ -61,7 +62,7 @@ struct ArmSceneHandle {
 
   /// collides(Q) or clearance(Q): f(q) per configuration, a scalar for one.
   template <class T, class F>
-  py::object perConfiguration(const py::object& q, int threads, const F& f) const {
+  py::object perConfiguration(const ArrayLikeArg& q, int threads, const F& f) const {
     const StateBatch b = configBatchFrom(q, "Q", *model);
     py::array_t<T> out(static_cast<py::ssize_t>(b.count));
     T* o = out.mutable_data();
@@ -74,16 +75,16 @@ struct ArmSceneHandle {
     return std::move(out);
   }
 
-  py::object collides(const py::object& q, int threads) const {
+  BoolOrArray collides(const ArrayLikeArg& q, int threads) const {
     return perConfiguration<bool>(q, threads, [this](const double* x) { return scene->collides(x); });
   }
 
-  py::object clearance(const py::object& q, int threads) const {
+  FloatOrArray clearance(const ArrayLikeArg& q, int threads) const {
     return perConfiguration<double>(q, threads, [this](const double* x) { return scene->clearance(x); });
   }
 
   /// The pair that makes one configuration collide, or None.
-  py::object contact(const py::object& q) const {
+  ArmContactResult contact(const ArrayLikeArg& q) const {
     const StateBatch b = configBatchFrom(q, "q", *model);
     if (b.batched) throw py::value_error("q: expected one configuration, got a batch");
     mp::ArmContact c;
@@ -103,7 +104,7 @@ struct ArmSceneHandle {
     return std::move(out);
   }
 
-  py::tuple checkEdges(const py::object& q0, const py::object& q1, bool first_contact, int threads) const {
+  EdgeResults checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact, int threads) const {
     const StateBatch a = configBatchFrom(q0, "Q0", *model);
     const StateBatch b = configBatchFrom(q1, "Q1", *model);
     const std::size_t n = batchSizeOf(a, "Q0", b, "Q1");
@@ -150,7 +151,7 @@ scene::MbmProblemFiles problemFilesFrom(const py::object& problem) {
   return files;
 }
 
-ArmProblemHandle loadProblem(const py::object& robot, const py::object& srdf, const py::object& problem,
+ArmProblemHandle loadProblem(const RobotOrPathArg& robot, const SrdfOrPathArg& srdf, const ProblemFilesArg& problem,
                              const std::optional<std::string>& group,
                              const std::vector<std::filesystem::path>& package_path, double contact_distance,
                              int max_depth) {
@@ -237,7 +238,7 @@ void bindArms(py::module_& m) {
            "first contact (every state before it keeps contact_distance); without, NaN for a colliding edge.")
       .def(
           "forward_kinematics",
-          [](const ArmSceneHandle& s, const py::object& q, const py::object& links) {
+          [](const ArmSceneHandle& s, const ArrayLikeArg& q, const LinksArg& links) -> FloatArray {
             return linkPosesArray(*s.model, configBatchFrom(q, "q", *s.model), linkSelection(*s.model, links),
                                   s.scene->baseInWorld());
           },

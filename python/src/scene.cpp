@@ -22,6 +22,7 @@
 #include "mddual/planning/problem_setup.h"
 #include "mddual/planning/state_space.h"
 #include "planning_convert.h"
+#include "typed.h"
 
 namespace mddual::python {
 namespace {
@@ -111,8 +112,8 @@ class Scene {
   /// A scene from polytopes in memory: the robot's pieces in its frame R, the
   /// world's in the world frame, kConvex pieces as the loaders make them.
   static Scene fromPolytopes(const std::vector<ConvexPolytope>& robot, const std::vector<ConvexPolytope>& world,
-                             const std::string& space, const py::object& bounds, const py::object& start,
-                             const py::object& goal, const std::string& name) {
+                             const std::string& space, const ArrayLikeArg& bounds, const ArrayLikeOrNoneArg& start,
+                             const ArrayLikeOrNoneArg& goal, const std::string& name) {
     scene::ProblemScene sc;
     sc.space = spaceKindFrom(space);
     const DoubleArray b = toDoubleArray(bounds, "bounds", "a (2, 3) array: min and max corner");
@@ -156,7 +157,7 @@ class Scene {
     return py::array_t<double>(static_cast<py::ssize_t>(reals.size()), reals.data());
   }
 
-  Eigen::Matrix4d poseOf(const py::object& state) const {
+  Eigen::Matrix4d poseOf(const ArrayLikeArg& state) const {
     const StateBatch b = stateBatchFrom(state, "state", dim_, "state");
     if (b.batched) throw py::value_error("state: expected one state, got a batch");
     StateHolder s(space_->stateSpace());
@@ -164,7 +165,7 @@ class Scene {
     return space_->pose(s.get()).matrix();
   }
 
-  py::object collides(const py::object& poses) const {
+  BoolOrArray collides(const ArrayLikeArg& poses) const {
     const PoseBatch X = poseBatchFrom(poses, "X_WR");
     const std::size_t n = X.poses.size();
     py::array_t<bool> out(static_cast<py::ssize_t>(n));
@@ -177,7 +178,7 @@ class Scene {
     return std::move(out);
   }
 
-  py::object isValid(const py::object& states) const {
+  BoolOrArray isValid(const ArrayLikeArg& states) const {
     const StateBatch b = stateBatchFrom(states, "states", dim_, "state");
     py::array_t<bool> out(static_cast<py::ssize_t>(b.count));
     bool* o = out.mutable_data();
@@ -194,7 +195,7 @@ class Scene {
     return std::move(out);
   }
 
-  py::dict checkEdges(const py::object& starts, const py::object& ends) const {
+  ArrayDict checkEdges(const ArrayLikeArg& starts, const ArrayLikeArg& ends) const {
     const StateBatch s1 = stateBatchFrom(starts, "starts", dim_, "state");
     const StateBatch s2 = stateBatchFrom(ends, "ends", dim_, "state");
     const std::size_t n = batchSizeOf(s1, "starts", s2, "ends");
@@ -228,8 +229,8 @@ class Scene {
     return out;
   }
 
-  py::dict directedClearance(const py::object& poses, const py::object& directions,
-                             const py::object& max_distance) const {
+  ArrayDict directedClearance(const ArrayLikeArg& poses, const ArrayLikeArg& directions,
+                              const ArrayLikeArg& max_distance) const {
     const PoseBatch X = poseBatchFrom(poses, "X_WR");
     const VectorBatch u = vectorBatchFrom(directions, "directions");
     const ScalarBatch limit = scalarBatchFrom(max_distance, "max_distance");
@@ -353,7 +354,7 @@ void bindScene(py::module_& m) {
                              [](const Scene& s) { return origins(s.mddScene().world().pieces()); })
       .def_property_readonly("warnings", [](const Scene& s) { return s.problem().scene->warnings; })
       .def(
-          "state", [](const Scene& s, const py::object& X_WR) { return s.stateOf(poseFrom(X_WR, "X_WR")); },
+          "state", [](const Scene& s, const ArrayLikeArg& X_WR) { return s.stateOf(poseFrom(X_WR, "X_WR")); },
           py::arg("X_WR"), "The state of this space whose pose is X_WR (InvalidInputError if there is none).")
       .def("pose", &Scene::poseOf, py::arg("state"), "The robot's 4x4 pose X_WR in `state`.")
       .def("collides", &Scene::collides, py::arg("X_WR"),

@@ -64,6 +64,9 @@ struct SrdfOrPath {
 struct ProblemFiles {
   static constexpr char text[] = "mddual.ArmProblemFiles | tuple[str | os.PathLike[str], str | os.PathLike[str]]";
 };
+struct CastSegments {
+  static constexpr char text[] = "Literal['resolution', 'whole_edge']";
+};
 // Results.
 struct BoolOrArray {
   static constexpr char text[] = "bool | numpy.typing.NDArray[numpy.bool_]";
@@ -102,6 +105,8 @@ using RobotOrPathArg = Typed<hint::RobotOrPath>;
 using SrdfOrPathArg = Typed<hint::SrdfOrPath>;
 /// An ArmProblemFiles or a (scene, request) pair of paths.
 using ProblemFilesArg = Typed<hint::ProblemFiles>;
+/// The hull-cast checks' segments (a str).
+using CastSegmentsArg = Typed<hint::CastSegments>;
 
 /// bool for one item, a bool array for a batch.
 using BoolOrArray = Typed<hint::BoolOrArray>;

@@ -1,8 +1,9 @@
 """The shipped type stubs (python/mddual-stubs/__init__.pyi) describe this module.
 
 Every public name of the module and of each class is in the stub, and with the
-planning layer built the stub is exactly what scripts/gen_stubs.py writes, so
-it cannot go stale silently: after changing the bindings, regenerate it with
+planning layer and the hull-cast peer (Bullet) built the stub is exactly what
+scripts/gen_stubs.py writes, so it cannot go stale silently: after changing
+the bindings, regenerate it with
 
     PYTHONPATH=build/release/python python3 scripts/gen_stubs.py
 
@@ -24,6 +25,9 @@ import mddual
 ROOT = pathlib.Path(__file__).resolve().parent.parent.parent
 STUB = ROOT / "python" / "mddual-stubs" / "__init__.pyi"
 REGENERATE = "regenerate it: PYTHONPATH=<build>/python python3 scripts/gen_stubs.py"
+# The stub describes the module with the planning layer and the hull-cast peer (Bullet).
+COMPLETE = hasattr(mddual, "ArmScene") and hasattr(mddual, "HullCastScene")
+WITHOUT = "mddual was built without the planning layer or the hull-cast peer (the stub describes it with them)"
 
 
 def load_generator():
@@ -70,16 +74,16 @@ def test_stub_lists_every_public_member_of_each_class():
 
 
 def test_stub_names_only_what_the_module_has():
-    # The stub is generated with the planning layer, so a module without it has fewer names.
+    # The stub is generated with the planning layer and Bullet, so a module without them has fewer names.
     extra = sorted(public(stub_names()) - public(dir(mddual)))
-    if not hasattr(mddual, "ArmScene"):
-        pytest.skip("mddual was built without the planning layer")
+    if not COMPLETE:
+        pytest.skip(WITHOUT)
     assert not extra, f"{STUB.name} has {extra}, which the module does not; {REGENERATE}"
 
 
 def test_stub_is_what_the_generator_writes():
-    if not hasattr(mddual, "ArmScene"):
-        pytest.skip("mddual was built without the planning layer (the stub describes the module with it)")
+    if not COMPLETE:
+        pytest.skip(WITHOUT)
     generated = load_generator().generate(mddual)
     assert STUB.read_text() == generated, f"{STUB.name} is stale (signatures or docstrings changed); {REGENERATE}"
 
@@ -168,16 +172,16 @@ def test_annotations_name_real_types():
     # Every annotation of the stub evaluates against typing, NumPy and the
     # module (a misspelt numpy.bool or a class the module lacks fails), and
     # the array arguments are NumPy's array-likes.
-    if not hasattr(mddual, "ArmScene"):
-        pytest.skip("mddual was built without the planning layer (the stub names its classes)")
+    if not COMPLETE:
+        pytest.skip(WITHOUT)
     import os
     import typing
 
     import numpy
     import numpy.typing
 
-    namespace = {n: getattr(typing, n) for n in ("Any", "Callable", "Iterable", "Iterator", "Optional", "Sequence",
-                                                 "Union")}
+    namespace = {n: getattr(typing, n) for n in ("Any", "Callable", "Iterable", "Iterator", "Literal", "Optional",
+                                                 "Sequence", "Union")}
     namespace.update(os=os, pathlib=pathlib, numpy=numpy)
     namespace.update({n: getattr(mddual, n) for n in public(dir(mddual)) if inspect.isclass(getattr(mddual, n))})
     count = 0

@@ -20,112 +20,114 @@
 #include "mddual/planning/arm_problem.h"
 #include "mddual/planning/arm_scene.h"
 #include "planning_convert.h"
+#include "typed.h"
 
 namespace mddual::python {
 namespace {
 
 namespace mp = mddual::planning;
 
-/// mddual.ArmScene: the C++ scene with the model Python knows.
-struct ArmSceneHandle {
-  std::shared_ptr<scene::RobotModel> model;
-  std::shared_ptr<const mp::ArmScene> scene;
+}  // namespace
 
-  static ArmSceneHandle make(const std::shared_ptr<scene::RobotModel>& model, const py::object& world,
-                             const py::object& allowed, const py::object& X_WB, double contact_distance,
-                             int max_depth) {
-    if (!model) throw py::type_error("model: expected a RobotModel, got None");
-    std::vector<scene::Piece> pieces;
-    if (!world.is_none()) {
-      for (const py::handle& p : world) {
-        const std::string origin = "world " + std::to_string(pieces.size());
-        pieces.push_back(scene::Piece::make(p.cast<ConvexPolytope>(), scene::PieceKind::kConvex, origin));
-      }
+py::dict armContactDict(const scene::RobotModel& model, const mp::ArmScene& scene, const mp::ArmContact& c) {
+  const auto& pieces = scene.world().pieces();
+  py::dict out;
+  out["link"] = model.link(c.link).name;
+  out["other_link"] = c.other_link >= 0 ? py::object(py::str(model.link(c.other_link).name)) : py::none();
+  out["world_piece"] = c.world_piece >= 0 ? py::object(py::int_(c.world_piece)) : py::none();
+  out["world_piece_origin"] =
+      c.world_piece >= 0 ? py::object(py::str(pieces[static_cast<std::size_t>(c.world_piece)].origin)) : py::none();
+  return out;
+}
+
+ArmSceneHandle ArmSceneHandle::make(const std::shared_ptr<scene::RobotModel>& model, const PolytopesArg& world,
+                                    const AllowedArg& allowed, const ArrayLikeOrNoneArg& X_WB, double contact_distance,
+                                    int max_depth) {
+  if (!model) throw py::type_error("model: expected a RobotModel, got None");
+  std::vector<scene::Piece> pieces;
+  if (!world.is_none()) {
+    for (const py::handle& p : world) {
+      const std::string origin = "world " + std::to_string(pieces.size());
+      pieces.push_back(scene::Piece::make(p.cast<ConvexPolytope>(), scene::PieceKind::kConvex, origin));
     }
-    scene::AllowedCollisions filter(*model);
-    if (py::isinstance<AllowedLinks>(allowed)) {
-      const auto& a = allowed.cast<const AllowedLinks&>();
-      if (a.model != model) throw py::value_error("allowed: an AllowedCollisions of another RobotModel");
-      filter = a.filter;
-    } else if (py::isinstance<scene::Srdf>(allowed)) {
-      filter = scene::AllowedCollisions(*model, allowed.cast<const scene::Srdf&>());
-    } else if (!allowed.is_none()) {
-      throw py::type_error("allowed: expected an AllowedCollisions, an Srdf or None");
-    }
-    mp::ArmSceneOptions options;
-    options.contact_distance = contact_distance;
-    options.max_depth = max_depth;
-    auto w = std::make_shared<const scene::World>(std::move(pieces), "world");
-    return {model, std::make_shared<const mp::ArmScene>(model, w, std::move(filter), poseFrom(X_WB, "X_WB"), options)};
   }
+  scene::AllowedCollisions filter(*model);
+  if (py::isinstance<AllowedLinks>(allowed)) {
+    const auto& a = allowed.cast<const AllowedLinks&>();
+    if (a.model != model) throw py::value_error("allowed: an AllowedCollisions of another RobotModel");
+    filter = a.filter;
+  } else if (py::isinstance<scene::Srdf>(allowed)) {
+    filter = scene::AllowedCollisions(*model, allowed.cast<const scene::Srdf&>());
+  } else if (!allowed.is_none()) {
+    throw py::type_error("allowed: expected an AllowedCollisions, an Srdf or None");
+  }
+  mp::ArmSceneOptions options;
+  options.contact_distance = contact_distance;
+  options.max_depth = max_depth;
+  auto w = std::make_shared<const scene::World>(std::move(pieces), "world");
+  return {model, std::make_shared<const mp::ArmScene>(model, w, std::move(filter), poseFrom(X_WB, "X_WB"), options)};
+}
 
-  /// collides(Q) or clearance(Q): f(q) per configuration, a scalar for one.
-  template <class T, class F>
-  py::object perConfiguration(const py::object& q, int threads, const F& f) const {
-    const StateBatch b = configBatchFrom(q, "Q", *model);
-    py::array_t<T> out(static_cast<py::ssize_t>(b.count));
-    T* o = out.mutable_data();
-    {
-      py::gil_scoped_release release;
-      const int n = model->numVariables();
-      parallelFor(b.count, workerCount(threads, b.count), [&](std::size_t k) { o[k] = f(b.row(k, n)); });
-    }
-    if (!b.batched) return py::cast(o[0]);
-    return std::move(out);
+template <class T, class F>
+py::object ArmSceneHandle::perConfiguration(const ArrayLikeArg& q, int threads, const F& f) const {
+  const StateBatch b = configBatchFrom(q, "Q", *model);
+  py::array_t<T> out(static_cast<py::ssize_t>(b.count));
+  T* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    const int n = model->numVariables();
+    parallelFor(b.count, workerCount(threads, b.count), [&](std::size_t k) { o[k] = f(b.row(k, n)); });
   }
+  if (!b.batched) return py::cast(o[0]);
+  return std::move(out);
+}
 
-  py::object collides(const py::object& q, int threads) const {
-    return perConfiguration<bool>(q, threads, [this](const double* x) { return scene->collides(x); });
-  }
+BoolOrArray ArmSceneHandle::collides(const ArrayLikeArg& q, int threads) const {
+  return perConfiguration<bool>(q, threads, [this](const double* x) { return scene->collides(x); });
+}
 
-  py::object clearance(const py::object& q, int threads) const {
-    return perConfiguration<double>(q, threads, [this](const double* x) { return scene->clearance(x); });
-  }
+FloatOrArray ArmSceneHandle::clearance(const ArrayLikeArg& q, int threads) const {
+  return perConfiguration<double>(q, threads, [this](const double* x) { return scene->clearance(x); });
+}
 
-  /// The pair that makes one configuration collide, or None.
-  py::object contact(const py::object& q) const {
-    const StateBatch b = configBatchFrom(q, "q", *model);
-    if (b.batched) throw py::value_error("q: expected one configuration, got a batch");
-    mp::ArmContact c;
-    bool hit = false;
-    {
-      py::gil_scoped_release release;
-      hit = scene->collides(b.row(0, model->numVariables()), &c);
-    }
-    if (!hit) return py::none();
-    const auto& pieces = scene->world().pieces();
-    py::dict out;
-    out["link"] = model->link(c.link).name;
-    out["other_link"] = c.other_link >= 0 ? py::object(py::str(model->link(c.other_link).name)) : py::none();
-    out["world_piece"] = c.world_piece >= 0 ? py::object(py::int_(c.world_piece)) : py::none();
-    out["world_piece_origin"] =
-        c.world_piece >= 0 ? py::object(py::str(pieces[static_cast<std::size_t>(c.world_piece)].origin)) : py::none();
-    return std::move(out);
+ArmContactResult ArmSceneHandle::contact(const ArrayLikeArg& q) const {
+  const StateBatch b = configBatchFrom(q, "q", *model);
+  if (b.batched) throw py::value_error("q: expected one configuration, got a batch");
+  mp::ArmContact c;
+  bool hit = false;
+  {
+    py::gil_scoped_release release;
+    hit = scene->collides(b.row(0, model->numVariables()), &c);
   }
+  if (!hit) return py::none();
+  return armContactDict(*model, *scene, c);
+}
 
-  py::tuple checkEdges(const py::object& q0, const py::object& q1, bool first_contact, int threads) const {
-    const StateBatch a = configBatchFrom(q0, "Q0", *model);
-    const StateBatch b = configBatchFrom(q1, "Q1", *model);
-    const std::size_t n = batchSizeOf(a, "Q0", b, "Q1");
-    py::array_t<bool> collides(static_cast<py::ssize_t>(n));
-    py::array_t<double> fraction(static_cast<py::ssize_t>(n));
-    {
-      bool* c = collides.mutable_data();
-      double* f = fraction.mutable_data();
-      py::gil_scoped_release release;
-      const int nv = model->numVariables();
-      const mp::EdgeQuery query = first_contact ? mp::EdgeQuery::kFirstContact : mp::EdgeQuery::kValidity;
-      parallelFor(n, workerCount(threads, n), [&](std::size_t k) {
-        const mp::ArmEdgeResult r = scene->checkEdge(a.row(k, nv), b.row(k, nv), query);
-        c[k] = r.collides;
-        // kValidity stops at any contact: its fraction bounds nothing.
-        f[k] = r.collides && !first_contact ? std::numeric_limits<double>::quiet_NaN() : r.fraction;
-      });
-    }
-    if (!a.batched && !b.batched) return py::make_tuple(py::bool_(collides.at(0)), py::float_(fraction.at(0)));
-    return py::make_tuple(collides, fraction);
+EdgeResults ArmSceneHandle::checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact,
+                                       int threads) const {
+  const StateBatch a = configBatchFrom(q0, "Q0", *model);
+  const StateBatch b = configBatchFrom(q1, "Q1", *model);
+  const std::size_t n = batchSizeOf(a, "Q0", b, "Q1");
+  py::array_t<bool> collides(static_cast<py::ssize_t>(n));
+  py::array_t<double> fraction(static_cast<py::ssize_t>(n));
+  {
+    bool* c = collides.mutable_data();
+    double* f = fraction.mutable_data();
+    py::gil_scoped_release release;
+    const int nv = model->numVariables();
+    const mp::EdgeQuery query = first_contact ? mp::EdgeQuery::kFirstContact : mp::EdgeQuery::kValidity;
+    parallelFor(n, workerCount(threads, n), [&](std::size_t k) {
+      const mp::ArmEdgeResult r = scene->checkEdge(a.row(k, nv), b.row(k, nv), query);
+      c[k] = r.collides;
+      // kValidity stops at any contact: its fraction bounds nothing.
+      f[k] = r.collides && !first_contact ? std::numeric_limits<double>::quiet_NaN() : r.fraction;
+    });
   }
-};
+  if (!a.batched && !b.batched) return py::make_tuple(py::bool_(collides.at(0)), py::float_(fraction.at(0)));
+  return py::make_tuple(collides, fraction);
+}
+
+namespace {
 
 /// mddual.ArmProblem.
 struct ArmProblemHandle {
@@ -150,7 +152,7 @@ scene::MbmProblemFiles problemFilesFrom(const py::object& problem) {
   return files;
 }
 
-ArmProblemHandle loadProblem(const py::object& robot, const py::object& srdf, const py::object& problem,
+ArmProblemHandle loadProblem(const RobotOrPathArg& robot, const SrdfOrPathArg& srdf, const ProblemFilesArg& problem,
                              const std::optional<std::string>& group,
                              const std::vector<std::filesystem::path>& package_path, double contact_distance,
                              int max_depth) {
@@ -237,7 +239,7 @@ void bindArms(py::module_& m) {
            "first contact (every state before it keeps contact_distance); without, NaN for a colliding edge.")
       .def(
           "forward_kinematics",
-          [](const ArmSceneHandle& s, const py::object& q, const py::object& links) {
+          [](const ArmSceneHandle& s, const ArrayLikeArg& q, const LinksArg& links) -> FloatArray {
             return linkPosesArray(*s.model, configBatchFrom(q, "q", *s.model), linkSelection(*s.model, links),
                                   s.scene->baseInWorld());
           },

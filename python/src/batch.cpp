@@ -13,6 +13,7 @@
 #include "convert.h"
 #include "mddual/error.h"
 #include "mddual/query.h"
+#include "typed.h"
 
 namespace mddual::python {
 namespace {
@@ -96,8 +97,8 @@ DirectionalInput directionalInput(const ConvexPolytope& a, const ConvexPolytope&
   return in;
 }
 
-py::dict mddBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b, const py::object& X_WB,
-                  const py::object& directions, bool warm_start) {
+ArrayDict mddBatch(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                   const ArrayLikeOrNoneArg& X_WB, const ArrayLikeArg& directions, bool warm_start) {
   PairBatch p = pairBatch(X_WA, X_WB);
   const VectorBatch s = vectorBatchFrom(directions, "directions");
   p.size.add(s.vectors.size(), s.batched, "directions");
@@ -133,8 +134,9 @@ py::dict mddBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexP
   return out;
 }
 
-py::dict toiBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b, const py::object& X_WB,
-                  const py::object& directions, const py::object& max_distance, bool exact, bool warm_start) {
+ArrayDict toiBatch(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                   const ArrayLikeOrNoneArg& X_WB, const ArrayLikeArg& directions, const ArrayLikeArg& max_distance,
+                   bool exact, bool warm_start) {
   PairBatch p = pairBatch(X_WA, X_WB);
   const VectorBatch s = vectorBatchFrom(directions, "directions");
   p.size.add(s.vectors.size(), s.batched, "directions");
@@ -171,8 +173,8 @@ py::dict toiBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexP
   return out;
 }
 
-py::dict intersectBatch(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b,
-                        const py::object& X_WB, bool warm_start) {
+ArrayDict intersectBatch(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                         const ArrayLikeOrNoneArg& X_WB, bool warm_start) {
   const PairBatch p = pairBatch(X_WA, X_WB);
   const std::size_t n = p.size.size();
   auto status = codes(n);

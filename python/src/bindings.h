@@ -36,5 +36,9 @@ void bindRobot(py::module_& m);
 /// mddual.ArmScene, ArmProblem, list_arm_problems and load_arm_problem (with
 /// the planning layer; after bindRobot).
 void bindArms(py::module_& m);
+/// mddual.HullCastScene and ArmHullCastScene, the Bullet peer checker (when
+/// the mddual_hull_cast library is built: MDDUAL_PYTHON_HAS_HULL_CAST; after
+/// bindScene and bindArms).
+void bindHullCast(py::module_& m);
 
 }  // namespace mddual::python

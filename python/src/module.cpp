@@ -22,4 +22,7 @@ PYBIND11_MODULE(mddual, m) {
   mp::bindRobot(m);
   mp::bindArms(m);
 #endif
+#ifdef MDDUAL_PYTHON_HAS_HULL_CAST
+  mp::bindHullCast(m);
+#endif
 }

@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "convert.h"
+#include "typed.h"
 
 namespace mddual::python {
 
@@ -31,8 +32,8 @@ PenetrationMethod penetrationMethodFrom(const std::string& text, const char* nam
 
 namespace {
 
-DirectionalInput directionalInput(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b,
-                                  const py::object& X_WB, const py::object& direction) {
+DirectionalInput directionalInput(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                                  const ArrayLikeOrNoneArg& X_WB, const ArrayLikeArg& direction) {
   DirectionalInput in;
   in.a = &a;
   in.X_WA = poseFrom(X_WA, "X_WA");
@@ -42,16 +43,17 @@ DirectionalInput directionalInput(const ConvexPolytope& a, const py::object& X_W
   return in;
 }
 
-MddResult mddCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b, const py::object& X_WB,
-                  const py::object& direction, const std::string& method) {
+MddResult mddCall(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                  const ArrayLikeOrNoneArg& X_WB, const ArrayLikeArg& direction, const std::string& method) {
   const QueryMethod m = queryMethodFrom(method, "method");
   const DirectionalInput in = directionalInput(a, X_WA, b, X_WB, direction);
   py::gil_scoped_release release;
   return m == QueryMethod::kBrute ? bruteForceMdd(in) : mdd(in);
 }
 
-ToiResult toiCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b, const py::object& X_WB,
-                  const py::object& direction, double max_distance, bool exact, const std::string& method) {
+ToiResult toiCall(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                  const ArrayLikeOrNoneArg& X_WB, const ArrayLikeArg& direction, double max_distance, bool exact,
+                  const std::string& method) {
   const QueryMethod m = queryMethodFrom(method, "method");
   DirectionalInput in = directionalInput(a, X_WA, b, X_WB, direction);
   in.max_distance = max_distance;
@@ -60,8 +62,8 @@ ToiResult toiCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexP
   return m == QueryMethod::kBrute ? bruteForceToi(in) : toi(in);
 }
 
-IntersectResult intersectCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b,
-                              const py::object& X_WB, const std::string& method) {
+IntersectResult intersectCall(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                              const ArrayLikeOrNoneArg& X_WB, const std::string& method) {
   const QueryMethod m = queryMethodFrom(method, "method");
   IntersectInput in;
   in.a = &a;
@@ -72,8 +74,8 @@ IntersectResult intersectCall(const ConvexPolytope& a, const py::object& X_WA, c
   return m == QueryMethod::kBrute ? bruteForceIntersect(in) : intersect(in);
 }
 
-PenetrationResult penetrationCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b,
-                                  const py::object& X_WB, const std::string& method, double delta) {
+PenetrationResult penetrationCall(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                                  const ArrayLikeOrNoneArg& X_WB, const std::string& method, double delta) {
   PenetrationInput in;
   in.method = penetrationMethodFrom(method, "method");
   in.a = &a;
@@ -85,7 +87,8 @@ PenetrationResult penetrationCall(const ConvexPolytope& a, const py::object& X_W
   return penetrationDepth(in);
 }
 
-WidthResult widthCall(const ConvexPolytope& a, const py::object& X_WA, const std::string& method, double delta) {
+WidthResult widthCall(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const std::string& method,
+                      double delta) {
   WidthInput in;
   in.method = penetrationMethodFrom(method, "method");
   in.a = &a;
@@ -95,8 +98,8 @@ WidthResult widthCall(const ConvexPolytope& a, const py::object& X_WA, const std
   return width(in);
 }
 
-DistanceResult distanceCall(const ConvexPolytope& a, const py::object& X_WA, const ConvexPolytope& b,
-                            const py::object& X_WB) {
+DistanceResult distanceCall(const ConvexPolytope& a, const ArrayLikeOrNoneArg& X_WA, const ConvexPolytope& b,
+                            const ArrayLikeOrNoneArg& X_WB) {
   DistanceInput in;
   in.a = &a;
   in.X_WA = poseFrom(X_WA, "X_WA");

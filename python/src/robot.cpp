@@ -18,6 +18,7 @@
 #include "convert.h"
 #include "mddual/scene/srdf.h"
 #include "planning_convert.h"
+#include "typed.h"
 
 namespace mddual::python {
 
@@ -112,7 +113,7 @@ std::vector<std::pair<std::string, double>> namedValues(const py::dict& values) 
   return out;
 }
 
-std::vector<double> baseConfiguration(const scene::RobotModel& m, const py::object& base) {
+std::vector<double> baseConfiguration(const scene::RobotModel& m, const ArrayLikeOrNoneArg& base) {
   if (base.is_none()) return m.defaultConfiguration();
   const StateBatch b = configBatchFrom(base, "base", m);
   if (b.batched) throw py::value_error("base: expected one configuration, got a batch");
@@ -191,7 +192,7 @@ void bindRobot(py::module_& m) {
           "Every variable at 0, or at the middle of its limits when 0 is outside.")
       .def(
           "configuration",
-          [](const scene::RobotModel& r, const py::dict& values, const py::object& base) {
+          [](const scene::RobotModel& r, const py::dict& values, const ArrayLikeOrNoneArg& base) {
             return configurationArray(
                 scene::applyJointValues(r, baseConfiguration(r, base), namedValues(values), "configuration"));
           },
@@ -200,13 +201,13 @@ void bindRobot(py::module_& m) {
           "joints are skipped (their leader decides). SceneError for an unknown or fixed joint.")
       .def(
           "link_pieces",
-          [](const scene::RobotModel& r, const py::object& link) {
+          [](const scene::RobotModel& r, const LinkArg& link) {
             return polytopes(r.link(linkIndexFrom(r, link, "link")).pieces);
           },
           py::arg("link"), "The collision pieces (ConvexPolytope) of a link (name or index), in the link's frame.")
       .def(
           "forward_kinematics",
-          [](const scene::RobotModel& r, const py::object& q, const py::object& links) {
+          [](const scene::RobotModel& r, const ArrayLikeArg& q, const LinksArg& links) -> FloatArray {
             return linkPosesArray(r, configBatchFrom(q, "q", r), linkSelection(r, links),
                                   Eigen::Isometry3d::Identity());
           },
@@ -278,25 +279,25 @@ void bindRobot(py::module_& m) {
            "Every pair checked, or the SRDF's matrix (SceneError for a link the model does not have).")
       .def(
           "allow",
-          [](AllowedLinks& a, const py::object& k, const py::object& l, bool allowed) {
+          [](AllowedLinks& a, const LinkArg& k, const LinkArg& l, bool allowed) {
             a.filter.allow(linkIndexFrom(*a.model, k, "link1"), linkIndexFrom(*a.model, l, "link2"), allowed);
           },
           py::arg("link1"), py::arg("link2"), py::arg("allowed") = true, "Skip (or check again) a link pair.")
       .def(
           "allowed",
-          [](const AllowedLinks& a, const py::object& k, const py::object& l) {
+          [](const AllowedLinks& a, const LinkArg& k, const LinkArg& l) {
             return a.filter.allowed(linkIndexFrom(*a.model, k, "link1"), linkIndexFrom(*a.model, l, "link2"));
           },
           py::arg("link1"), py::arg("link2"))
       .def(
           "allow_with_world",
-          [](AllowedLinks& a, const py::object& k, bool allowed) {
+          [](AllowedLinks& a, const LinkArg& k, bool allowed) {
             a.filter.allowWithWorld(linkIndexFrom(*a.model, k, "link"), allowed);
           },
           py::arg("link"), py::arg("allowed") = true, "Skip (or check again) a link against the world.")
       .def(
           "allowed_with_world",
-          [](const AllowedLinks& a, const py::object& k) {
+          [](const AllowedLinks& a, const LinkArg& k) {
             return a.filter.allowedWithWorld(linkIndexFrom(*a.model, k, "link"));
           },
           py::arg("link"))

@@ -22,6 +22,8 @@
 #include "mddual/planning/problem_setup.h"
 #include "mddual/planning/state_space.h"
 #include "planning_convert.h"
+#include "scene_binding.h"
+#include "typed.h"
 
 namespace mddual::python {
 namespace {
@@ -40,51 +42,24 @@ int stateDimension(mp::SpaceKind kind) {
   return 0;
 }
 
-/// An OMPL state of `space`, freed with it.
-class StateHolder {
- public:
-  explicit StateHolder(const ob::StateSpacePtr& space) : space_(space), state_(space->allocState()) {}
-  ~StateHolder() { space_->freeState(state_); }
-  StateHolder(const StateHolder&) = delete;
-  StateHolder& operator=(const StateHolder&) = delete;
-  ob::State* get() const { return state_; }
-  /// Sets the state from `d` numbers (an SE(3) state's quaternion made unit);
-  /// InvalidInputError naming `what` for a non-finite one or a quaternion of
-  /// no rotation.
-  void set(const double* values, int d, const std::string& what) {
-    for (int i = 0; i < d; ++i) {
-      if (!std::isfinite(values[i])) {
-        throw InvalidInputError(what + ": component " + std::to_string(i) + " is not finite");
-      }
-    }
-    std::vector<double> reals(values, values + d);
-    if (space_->getType() == ob::STATE_SPACE_SE3) normaliseQuaternion(&reals, what);
-    space_->copyFromReals(state_, reals);
+/// SE(3)'s quaternion (components 3 to 6) made unit: scaled by its largest
+/// component first (its norm overflows at 1e200); InvalidInputError when
+/// its norm is below mp::kMinQuaternionNorm, the planning layer's "no
+/// rotation" (a zero one aborted in OMPL's SO(3) code from check_edges and
+/// was the identity in pose()).
+void normaliseQuaternion(std::vector<double>* reals, const std::string& what) {
+  Eigen::Map<Eigen::Vector4d> q(reals->data() + 3);
+  const double largest = q.cwiseAbs().maxCoeff();
+  const double norm = largest > 0.0 ? largest * (q / largest).norm() : 0.0;
+  if (!(norm >= mp::kMinQuaternionNorm)) {
+    std::ostringstream msg;
+    msg << what << ": the quaternion (components 3 to 6) has norm " << norm << ", below " << mp::kMinQuaternionNorm
+        << ": not a rotation";
+    throw InvalidInputError(msg.str());
   }
-
- private:
-  /// SE(3)'s quaternion (components 3 to 6) made unit: scaled by its largest
-  /// component first (its norm overflows at 1e200); InvalidInputError when
-  /// its norm is below mp::kMinQuaternionNorm, the planning layer's "no
-  /// rotation" (a zero one aborted in OMPL's SO(3) code from check_edges and
-  /// was the identity in pose()).
-  static void normaliseQuaternion(std::vector<double>* reals, const std::string& what) {
-    Eigen::Map<Eigen::Vector4d> q(reals->data() + 3);
-    const double largest = q.cwiseAbs().maxCoeff();
-    const double norm = largest > 0.0 ? largest * (q / largest).norm() : 0.0;
-    if (!(norm >= mp::kMinQuaternionNorm)) {
-      std::ostringstream msg;
-      msg << what << ": the quaternion (components 3 to 6) has norm " << norm << ", below " << mp::kMinQuaternionNorm
-          << ": not a rotation";
-      throw InvalidInputError(msg.str());
-    }
-    q /= largest;
-    q.normalize();
-  }
-
-  ob::StateSpacePtr space_;
-  ob::State* state_;
-};
+  q /= largest;
+  q.normalize();
+}
 
 scene::SpaceKind spaceKindFrom(const std::string& text) {
   for (scene::SpaceKind kind :
@@ -94,199 +69,201 @@ scene::SpaceKind spaceKindFrom(const std::string& text) {
   throw py::value_error("space: expected 'SE2', 'SE3', 'R2' or 'R3', got '" + mddual::clipForMessage(text) + "'");
 }
 
-class Scene {
- public:
-  explicit Scene(mp::Problem problem) : problem_(std::move(problem)) {
-    const scene::ProblemScene& sc = *problem_.scene;
-    space_ = mp::PlanningSpace::make(mp::toPlanningKind(sc.space), sc.bounds, sc.start.translation().z(),
-                                     Eigen::Quaterniond(sc.start.linear()));
-    // setup() fills the value locations that copyToReals / copyFromReals use.
-    space_->stateSpace()->setup();
-    scene_ = std::make_shared<mp::MddScene>(problem_.robot(), problem_.world());
-    dim_ = stateDimension(space_->kind());
-  }
-
-  static Scene load(const std::filesystem::path& cfg) { return Scene(mp::loadProblem(cfg)); }
-
-  /// A scene from polytopes in memory: the robot's pieces in its frame R, the
-  /// world's in the world frame, kConvex pieces as the loaders make them.
-  static Scene fromPolytopes(const std::vector<ConvexPolytope>& robot, const std::vector<ConvexPolytope>& world,
-                             const std::string& space, const py::object& bounds, const py::object& start,
-                             const py::object& goal, const std::string& name) {
-    scene::ProblemScene sc;
-    sc.space = spaceKindFrom(space);
-    const DoubleArray b = toDoubleArray(bounds, "bounds", "a (2, 3) array: min and max corner");
-    if (b.ndim() != 2 || b.shape(0) != 2 || b.shape(1) != 3) {
-      throw py::value_error("bounds: expected a (2, 3) array: min and max corner, got shape " + shapeText(b));
-    }
-    sc.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(b.at(0, 0), b.at(0, 1), b.at(0, 2)),
-                                    Eigen::Vector3d(b.at(1, 0), b.at(1, 1), b.at(1, 2)));
-    sc.start = poseFrom(start, "start");
-    sc.goal = poseFrom(goal, "goal");
-    std::vector<scene::Piece> robot_pieces;
-    for (std::size_t i = 0; i < robot.size(); ++i) {
-      robot_pieces.push_back(scene::Piece::make(robot[i], scene::PieceKind::kConvex, "robot " + std::to_string(i)));
-    }
-    std::vector<scene::Piece> world_pieces;
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      world_pieces.push_back(scene::Piece::make(world[i], scene::PieceKind::kConvex, "world " + std::to_string(i)));
-    }
-    sc.robot = scene::RigidBody(std::move(robot_pieces), "robot");
-    sc.world = scene::World(std::move(world_pieces), "world");
-    scene::ProblemConfig config;
-    config.name = name;
-    config.space = sc.space;
-    Scene out(mp::makeProblem(std::move(config), std::move(sc)));
-    // The start and goal must be states of the space (e.g. planar for SE2).
-    out.stateOf(out.problem().scene->start);
-    out.stateOf(out.problem().scene->goal);
-    return out;
-  }
-
-  const mp::Problem& problem() const { return problem_; }
-  const mp::PlanningSpace& space() const { return *space_; }
-  const mp::MddScene& mddScene() const { return *scene_; }
-  int dimension() const { return dim_; }
-
-  py::array_t<double> stateOf(const Eigen::Isometry3d& X_WR) const {
-    StateHolder s(space_->stateSpace());
-    space_->setPose(X_WR, s.get());
-    std::vector<double> reals;
-    space_->stateSpace()->copyToReals(reals, s.get());
-    return py::array_t<double>(static_cast<py::ssize_t>(reals.size()), reals.data());
-  }
-
-  Eigen::Matrix4d poseOf(const py::object& state) const {
-    const StateBatch b = stateBatchFrom(state, "state", dim_, "state");
-    if (b.batched) throw py::value_error("state: expected one state, got a batch");
-    StateHolder s(space_->stateSpace());
-    s.set(b.values.data(), dim_, "state");
-    return space_->pose(s.get()).matrix();
-  }
-
-  py::object collides(const py::object& poses) const {
-    const PoseBatch X = poseBatchFrom(poses, "X_WR");
-    const std::size_t n = X.poses.size();
-    py::array_t<bool> out(static_cast<py::ssize_t>(n));
-    bool* o = out.mutable_data();
-    {
-      py::gil_scoped_release release;
-      for (std::size_t k = 0; k < n; ++k) o[k] = scene_->collides(X.poses[k]);
-    }
-    if (!X.batched) return py::bool_(o[0]);
-    return std::move(out);
-  }
-
-  py::object isValid(const py::object& states) const {
-    const StateBatch b = stateBatchFrom(states, "states", dim_, "state");
-    py::array_t<bool> out(static_cast<py::ssize_t>(b.count));
-    bool* o = out.mutable_data();
-    {
-      py::gil_scoped_release release;
-      StateHolder s(space_->stateSpace());
-      for (std::size_t k = 0; k < b.count; ++k) {
-        s.set(b.row(k, dim_), dim_, itemName("states", k, b.batched));
-        const Eigen::Isometry3d X_WR = space_->pose(s.get());
-        o[k] = space_->positionInBounds(X_WR.translation()) && !scene_->collides(X_WR);
-      }
-    }
-    if (!b.batched) return py::bool_(o[0]);
-    return std::move(out);
-  }
-
-  py::dict checkEdges(const py::object& starts, const py::object& ends) const {
-    const StateBatch s1 = stateBatchFrom(starts, "starts", dim_, "state");
-    const StateBatch s2 = stateBatchFrom(ends, "ends", dim_, "state");
-    const std::size_t n = batchSizeOf(s1, "starts", s2, "ends");
-    py::array_t<bool> collides(static_cast<py::ssize_t>(n));
-    py::array_t<bool> start_collides(static_cast<py::ssize_t>(n));
-    py::array_t<double> fraction(static_cast<py::ssize_t>(n));
-    py::array_t<bool> exact(static_cast<py::ssize_t>(n));
-    {
-      bool* c = collides.mutable_data();
-      bool* sc = start_collides.mutable_data();
-      double* f = fraction.mutable_data();
-      bool* e = exact.mutable_data();
-      py::gil_scoped_release release;
-      StateHolder a(space_->stateSpace());
-      StateHolder b(space_->stateSpace());
-      for (std::size_t k = 0; k < n; ++k) {
-        a.set(s1.row(k, dim_), dim_, itemName("starts", k, s1.batched));
-        b.set(s2.row(k, dim_), dim_, itemName("ends", k, s2.batched));
-        const mp::EdgeContact r = mp::edgeContact(*scene_, *space_, a.get(), b.get());
-        c[k] = r.collides;
-        sc[k] = r.start_collides;
-        f[k] = r.fraction;
-        e[k] = r.exact;
-      }
-    }
-    py::dict out;
-    out["collides"] = collides;
-    out["start_collides"] = start_collides;
-    out["fraction"] = fraction;
-    out["exact"] = exact;
-    return out;
-  }
-
-  py::dict directedClearance(const py::object& poses, const py::object& directions,
-                             const py::object& max_distance) const {
-    const PoseBatch X = poseBatchFrom(poses, "X_WR");
-    const VectorBatch u = vectorBatchFrom(directions, "directions");
-    const ScalarBatch limit = scalarBatchFrom(max_distance, "max_distance");
-    BatchSize size;
-    size.add(X.poses.size(), X.batched, "X_WR");
-    size.add(u.vectors.size(), u.batched, "directions");
-    size.add(limit.values.size(), limit.batched, "max_distance");
-    const std::size_t n = size.size();
-    py::array_t<double> distance(static_cast<py::ssize_t>(n));
-    py::array_t<bool> start_collides(static_cast<py::ssize_t>(n));
-    py::array_t<std::int32_t> robot_piece(static_cast<py::ssize_t>(n));
-    py::array_t<std::int32_t> world_piece(static_cast<py::ssize_t>(n));
-    py::array_t<double> point({static_cast<py::ssize_t>(n), py::ssize_t{3}});
-    py::array_t<double> normal({static_cast<py::ssize_t>(n), py::ssize_t{3}});
-    {
-      double* dist = distance.mutable_data();
-      bool* sc = start_collides.mutable_data();
-      std::int32_t* rp = robot_piece.mutable_data();
-      std::int32_t* wp = world_piece.mutable_data();
-      double* p = point.mutable_data();
-      double* nn = normal.mutable_data();
-      py::gil_scoped_release release;
-      for (std::size_t k = 0; k < n; ++k) {
-        mp::DirectedClearance r;
-        try {
-          r = mp::directedClearance(*scene_, X[k], u[k], limit[k]);
-        } catch (const InvalidInputError& e) {
-          throw InvalidInputError("directed_clearance: query " + std::to_string(k) + ": " + e.what());
-        }
-        dist[k] = r.distance;
-        sc[k] = r.start_collides;
-        rp[k] = r.contact.robot_piece;
-        wp[k] = r.contact.world_piece;
-        for (std::size_t j = 0; j < 3; ++j) {
-          p[3 * k + j] = r.contact.p_WC(static_cast<Eigen::Index>(j));
-          nn[3 * k + j] = r.contact.n_W(static_cast<Eigen::Index>(j));
-        }
-      }
-    }
-    py::dict out;
-    out["distance"] = distance;
-    out["start_collides"] = start_collides;
-    out["robot_piece"] = robot_piece;
-    out["world_piece"] = world_piece;
-    out["point"] = point;
-    out["normal"] = normal;
-    return out;
-  }
-
- private:
-  mp::Problem problem_;
-  mp::PlanningSpacePtr space_;
-  std::shared_ptr<mp::MddScene> scene_;
-  int dim_ = 0;
-};
-
 }  // namespace
+
+void StateHolder::set(const double* values, int d, const std::string& what) {
+  for (int i = 0; i < d; ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InvalidInputError(what + ": component " + std::to_string(i) + " is not finite");
+    }
+  }
+  std::vector<double> reals(values, values + d);
+  if (space_->getType() == ob::STATE_SPACE_SE3) normaliseQuaternion(&reals, what);
+  space_->copyFromReals(state_, reals);
+}
+
+Scene::Scene(mp::Problem problem) : problem_(std::move(problem)) {
+  space_ = makeSpace();
+  scene_ = std::make_shared<mp::MddScene>(problem_.robot(), problem_.world());
+  dim_ = stateDimension(space_->kind());
+}
+
+mp::PlanningSpacePtr Scene::makeSpace() const {
+  const scene::ProblemScene& sc = *problem_.scene;
+  mp::PlanningSpacePtr space = mp::PlanningSpace::make(
+      mp::toPlanningKind(sc.space), sc.bounds, sc.start.translation().z(), Eigen::Quaterniond(sc.start.linear()));
+  // setup() fills the value locations that copyToReals / copyFromReals use.
+  space->stateSpace()->setup();
+  return space;
+}
+
+Scene Scene::load(const std::filesystem::path& cfg) {
+  return Scene(mp::loadProblem(cfg));
+}
+
+Scene Scene::fromPolytopes(const std::vector<ConvexPolytope>& robot, const std::vector<ConvexPolytope>& world,
+                           const std::string& space, const ArrayLikeArg& bounds, const ArrayLikeOrNoneArg& start,
+                           const ArrayLikeOrNoneArg& goal, const std::string& name) {
+  scene::ProblemScene sc;
+  sc.space = spaceKindFrom(space);
+  const DoubleArray b = toDoubleArray(bounds, "bounds", "a (2, 3) array: min and max corner");
+  if (b.ndim() != 2 || b.shape(0) != 2 || b.shape(1) != 3) {
+    throw py::value_error("bounds: expected a (2, 3) array: min and max corner, got shape " + shapeText(b));
+  }
+  sc.bounds = Eigen::AlignedBox3d(Eigen::Vector3d(b.at(0, 0), b.at(0, 1), b.at(0, 2)),
+                                  Eigen::Vector3d(b.at(1, 0), b.at(1, 1), b.at(1, 2)));
+  sc.start = poseFrom(start, "start");
+  sc.goal = poseFrom(goal, "goal");
+  std::vector<scene::Piece> robot_pieces;
+  for (std::size_t i = 0; i < robot.size(); ++i) {
+    robot_pieces.push_back(scene::Piece::make(robot[i], scene::PieceKind::kConvex, "robot " + std::to_string(i)));
+  }
+  std::vector<scene::Piece> world_pieces;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    world_pieces.push_back(scene::Piece::make(world[i], scene::PieceKind::kConvex, "world " + std::to_string(i)));
+  }
+  sc.robot = scene::RigidBody(std::move(robot_pieces), "robot");
+  sc.world = scene::World(std::move(world_pieces), "world");
+  scene::ProblemConfig config;
+  config.name = name;
+  config.space = sc.space;
+  Scene out(mp::makeProblem(std::move(config), std::move(sc)));
+  // The start and goal must be states of the space (e.g. planar for SE2).
+  out.stateOf(out.problem().scene->start);
+  out.stateOf(out.problem().scene->goal);
+  return out;
+}
+
+py::array_t<double> Scene::stateOf(const Eigen::Isometry3d& X_WR) const {
+  StateHolder s(space_->stateSpace());
+  space_->setPose(X_WR, s.get());
+  std::vector<double> reals;
+  space_->stateSpace()->copyToReals(reals, s.get());
+  return py::array_t<double>(static_cast<py::ssize_t>(reals.size()), reals.data());
+}
+
+Eigen::Matrix4d Scene::poseOf(const ArrayLikeArg& state) const {
+  const StateBatch b = stateBatchFrom(state, "state", dim_, "state");
+  if (b.batched) throw py::value_error("state: expected one state, got a batch");
+  StateHolder s(space_->stateSpace());
+  s.set(b.values.data(), dim_, "state");
+  return space_->pose(s.get()).matrix();
+}
+
+BoolOrArray Scene::collides(const ArrayLikeArg& poses) const {
+  const PoseBatch X = poseBatchFrom(poses, "X_WR");
+  const std::size_t n = X.poses.size();
+  py::array_t<bool> out(static_cast<py::ssize_t>(n));
+  bool* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t k = 0; k < n; ++k) o[k] = scene_->collides(X.poses[k]);
+  }
+  if (!X.batched) return py::bool_(o[0]);
+  return std::move(out);
+}
+
+BoolOrArray Scene::isValid(const ArrayLikeArg& states) const {
+  const StateBatch b = stateBatchFrom(states, "states", dim_, "state");
+  py::array_t<bool> out(static_cast<py::ssize_t>(b.count));
+  bool* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    StateHolder s(space_->stateSpace());
+    for (std::size_t k = 0; k < b.count; ++k) {
+      s.set(b.row(k, dim_), dim_, itemName("states", k, b.batched));
+      const Eigen::Isometry3d X_WR = space_->pose(s.get());
+      o[k] = space_->positionInBounds(X_WR.translation()) && !scene_->collides(X_WR);
+    }
+  }
+  if (!b.batched) return py::bool_(o[0]);
+  return std::move(out);
+}
+
+ArrayDict Scene::checkEdges(const ArrayLikeArg& starts, const ArrayLikeArg& ends) const {
+  const StateBatch s1 = stateBatchFrom(starts, "starts", dim_, "state");
+  const StateBatch s2 = stateBatchFrom(ends, "ends", dim_, "state");
+  const std::size_t n = batchSizeOf(s1, "starts", s2, "ends");
+  py::array_t<bool> collides(static_cast<py::ssize_t>(n));
+  py::array_t<bool> start_collides(static_cast<py::ssize_t>(n));
+  py::array_t<double> fraction(static_cast<py::ssize_t>(n));
+  py::array_t<bool> exact(static_cast<py::ssize_t>(n));
+  {
+    bool* c = collides.mutable_data();
+    bool* sc = start_collides.mutable_data();
+    double* f = fraction.mutable_data();
+    bool* e = exact.mutable_data();
+    py::gil_scoped_release release;
+    StateHolder a(space_->stateSpace());
+    StateHolder b(space_->stateSpace());
+    for (std::size_t k = 0; k < n; ++k) {
+      a.set(s1.row(k, dim_), dim_, itemName("starts", k, s1.batched));
+      b.set(s2.row(k, dim_), dim_, itemName("ends", k, s2.batched));
+      const mp::EdgeContact r = mp::edgeContact(*scene_, *space_, a.get(), b.get());
+      c[k] = r.collides;
+      sc[k] = r.start_collides;
+      f[k] = r.fraction;
+      e[k] = r.exact;
+    }
+  }
+  py::dict out;
+  out["collides"] = collides;
+  out["start_collides"] = start_collides;
+  out["fraction"] = fraction;
+  out["exact"] = exact;
+  return out;
+}
+
+ArrayDict Scene::directedClearance(const ArrayLikeArg& poses, const ArrayLikeArg& directions,
+                                   const ArrayLikeArg& max_distance) const {
+  const PoseBatch X = poseBatchFrom(poses, "X_WR");
+  const VectorBatch u = vectorBatchFrom(directions, "directions");
+  const ScalarBatch limit = scalarBatchFrom(max_distance, "max_distance");
+  BatchSize size;
+  size.add(X.poses.size(), X.batched, "X_WR");
+  size.add(u.vectors.size(), u.batched, "directions");
+  size.add(limit.values.size(), limit.batched, "max_distance");
+  const std::size_t n = size.size();
+  py::array_t<double> distance(static_cast<py::ssize_t>(n));
+  py::array_t<bool> start_collides(static_cast<py::ssize_t>(n));
+  py::array_t<std::int32_t> robot_piece(static_cast<py::ssize_t>(n));
+  py::array_t<std::int32_t> world_piece(static_cast<py::ssize_t>(n));
+  py::array_t<double> point({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  py::array_t<double> normal({static_cast<py::ssize_t>(n), py::ssize_t{3}});
+  {
+    double* dist = distance.mutable_data();
+    bool* sc = start_collides.mutable_data();
+    std::int32_t* rp = robot_piece.mutable_data();
+    std::int32_t* wp = world_piece.mutable_data();
+    double* p = point.mutable_data();
+    double* nn = normal.mutable_data();
+    py::gil_scoped_release release;
+    for (std::size_t k = 0; k < n; ++k) {
+      mp::DirectedClearance r;
+      try {
+        r = mp::directedClearance(*scene_, X[k], u[k], limit[k]);
+      } catch (const InvalidInputError& e) {
+        throw InvalidInputError("directed_clearance: query " + std::to_string(k) + ": " + e.what());
+      }
+      dist[k] = r.distance;
+      sc[k] = r.start_collides;
+      rp[k] = r.contact.robot_piece;
+      wp[k] = r.contact.world_piece;
+      for (std::size_t j = 0; j < 3; ++j) {
+        p[3 * k + j] = r.contact.p_WC(static_cast<Eigen::Index>(j));
+        nn[3 * k + j] = r.contact.n_W(static_cast<Eigen::Index>(j));
+      }
+    }
+  }
+  py::dict out;
+  out["distance"] = distance;
+  out["start_collides"] = start_collides;
+  out["robot_piece"] = robot_piece;
+  out["world_piece"] = world_piece;
+  out["point"] = point;
+  out["normal"] = normal;
+  return out;
+}
 
 void bindScene(py::module_& m) {
   // scene::SceneError: a subclass of InvalidInputError (as in C++); this
@@ -353,7 +330,7 @@ void bindScene(py::module_& m) {
                              [](const Scene& s) { return origins(s.mddScene().world().pieces()); })
       .def_property_readonly("warnings", [](const Scene& s) { return s.problem().scene->warnings; })
       .def(
-          "state", [](const Scene& s, const py::object& X_WR) { return s.stateOf(poseFrom(X_WR, "X_WR")); },
+          "state", [](const Scene& s, const ArrayLikeArg& X_WR) { return s.stateOf(poseFrom(X_WR, "X_WR")); },
           py::arg("X_WR"), "The state of this space whose pose is X_WR (InvalidInputError if there is none).")
       .def("pose", &Scene::poseOf, py::arg("state"), "The robot's 4x4 pose X_WR in `state`.")
       .def("collides", &Scene::collides, py::arg("X_WR"),

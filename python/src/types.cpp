@@ -10,6 +10,7 @@
 #include "convert.h"
 #include "mddual/distance.h"
 #include "mddual/query.h"
+#include "typed.h"
 
 namespace mddual::python {
 namespace {
@@ -39,8 +40,9 @@ void bindPolytope(py::module_& m) {
                              "A convex polytope: the convex hull of an (N, 3) array of points in its body frame. "
                              "Raises InvalidInputError (empty set, non-finite coordinate) or "
                              "DegenerateGeometryError (all points collinear or coincident).")
-      .def(py::init([](const py::object& points) { return ConvexPolytope::fromPoints(pointsFrom(points, "points")); }),
-           py::arg("points"))
+      .def(
+          py::init([](const ArrayLikeArg& points) { return ConvexPolytope::fromPoints(pointsFrom(points, "points")); }),
+          py::arg("points"))
       .def_property_readonly(
           "vertices", [](const ConvexPolytope& p) { return vectorsArray(p.vertices()); },
           "(V, 3) array: the hull's vertices in the body frame (input points)")

@@ -41,7 +41,7 @@ assert importlib.metadata.version("mddual") == mddual.__version__, (importlib.me
                                                                     mddual.__version__)
 
 text = pydoc.render_doc(mddual.toi, renderer=pydoc.plaintext)
-assert "toi(a: mddual.ConvexPolytope, X_WA: object, b: mddual.ConvexPolytope" in text, text
+assert "toi(a: mddual.ConvexPolytope, X_WA: numpy.typing.ArrayLike | None, b: mddual.ConvexPolytope" in text, text
 assert "How far B can translate" in text, text
 
 readme = pathlib.Path(sys.argv[1])

@@ -48,3 +48,17 @@ def test_readme_arm_example_runs_and_prints_its_comments(monkeypatch):
     with contextlib.redirect_stdout(out):
         exec(compile(block, str(README), "exec"), {"mddual": mddual, "np": np})
     assert out.getvalue().splitlines() == ["8 finger_left_joint", "[0.   0.   1.36]", "373 373", "True 0.853"]
+
+
+def test_readme_hull_cast_example_runs_and_prints_its_comments():
+    import mddual
+    import numpy as np
+    import pytest
+
+    if not hasattr(mddual, "HullCastScene"):
+        pytest.skip("mddual was built without the hull-cast peer (Bullet)")
+    block = re.findall(r"```python\n(.*?)```", README.read_text(), re.S)[3]
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(block, str(README), "exec"), {"mddual": mddual, "np": np})
+    assert out.getvalue().splitlines() == ["[ True]", "[ True] 50", "[False]"]

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One arm motion check and one state check, mdd's certified check against
-# OMPL's DiscreteMotionValidator with FCL at its default resolution, on the
-# same link pairs, per problem set of configs/arm7 (mddual_bench_arm_edges:
+# OMPL's DiscreteMotionValidator with FCL at its default resolution (fcl) and
+# with segments of at most 1/32 rad (fcl-fine), on the same link pairs, per problem set of configs/arm7 (mddual_bench_arm_edges:
 # edges drawn as RRT-Connect draws them, the fastest of the passes counts).
 # Builds the benchmark (Release, build/release) and writes
 # docs/results/arm-edges.md with this command and the build.
@@ -24,19 +24,20 @@ cmake --build build/release -j "$jobs" --target mddual_bench_arm_edges >/dev/nul
 out=docs/results/arm-edges.md
 command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_EDGES=$edges MDDUAL_ARM_PASSES=$passes ./scripts/run-arm-edges-bench.sh ${*}"
 {
-  echo "# arm7: one certified motion check against FCL's discrete one"
+  echo "# arm7: one certified motion check against FCL's discrete ones"
   echo
   echo "Made by \`${command% }\` at $(git rev-parse --short HEAD) on $(date -u +%Y-%m-%d)," \
     "$(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'))."
   echo "Per set, the first $problems problems, $edges edges each drawn as RRT-Connect draws them"
   echo "(from a valid state toward a uniform sample, at most 0.2 of the space's extent), checked by"
-  echo "mdd (certified) and by OMPL's DiscreteMotionValidator with FCL at the default resolution, on"
-  echo "the same link pairs; thread CPU time, the fastest of $passes passes. \"mdd only\": edges FCL calls"
-  echo "valid and mdd refuses (a contact between FCL's samples, or a false alarm); \"fcl only\": edges"
-  echo "mdd calls valid and FCL refuses (must be 0). fcl/mdd above 1: mdd is faster."
+  echo "mdd (certified) and by OMPL's DiscreteMotionValidator with FCL at the default resolution (fcl)"
+  echo "and with segments of at most 1/32 rad (fcl-fine, VAMP's resolution), on the same link pairs;"
+  echo "thread CPU time, the fastest of $passes passes. \"mdd only\": edges fcl calls valid and mdd refuses"
+  echo "(a contact between FCL's samples, or a false alarm); \"fcl only\": edges mdd calls valid and fcl"
+  echo "or fcl-fine refuses (must be 0). Ratios above 1: mdd is faster."
   echo
-  echo "| set | edges | colliding | mdd only | fcl only | mdd queries | fcl states | mdd us/edge | fcl us/edge | fcl/mdd | mdd us/state | fcl us/state | fcl/mdd |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| set | edges | colliding | mdd only | fcl only | mdd queries | fcl states | mdd us/edge | fcl us/edge | fcl/mdd | fcl-fine us/edge | fine/mdd | mdd us/state | fcl us/state | fcl/mdd |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$out"
 for s in "${sets[@]}"; do
   ./build/release/benchmarks/planning/mddual_bench_arm_edges "configs/arm7/problems/$s" \

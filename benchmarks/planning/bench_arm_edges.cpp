@@ -1,7 +1,9 @@
 // Arm edge benchmark: the cost of one motion check and one state check of
 // an arm, mdd's certified check against OMPL's DiscreteMotionValidator with
-// FCL at the space's default resolution (what MoveIt runs), on the same
-// links, self pairs and world, in the same run.
+// FCL at the space's default resolution (what MoveIt runs) and with segments
+// of at most 1/32 rad (fcl-fine), installed as `mddual bench` installs them
+// (the checker table), on the same links, self pairs and world, in the same
+// run.
 //
 //   mddual_bench_arm_edges PROBLEM_DIR --robot URDF --srdf SRDF [--problems N] [--edges M] [--seed S]
 //                          [--range R] [--passes P]
@@ -14,10 +16,9 @@
 //
 // Output: one Markdown row per problem and a total: edges, the share mdd
 // finds colliding, FCL-valid edges mdd refuses (a contact between FCL's
-// samples or a false alarm) and mdd-valid edges FCL refuses (must be 0),
-// microseconds per edge and per state of each, and the ratio fcl / mdd
-// (above 1: mdd is faster).
-#include <ompl/base/DiscreteMotionValidator.h>
+// samples or a false alarm) and mdd-valid edges fcl or fcl-fine refuses
+// (must be 0), microseconds per edge of each and per state, and the ratios
+// to mdd (above 1: mdd is faster).
 #include <ompl/base/ScopedState.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/util/Console.h>
@@ -33,6 +34,7 @@
 #include "bench_support.h"
 #include "mddual/planning/arm_checkers.h"
 #include "mddual/planning/arm_problem.h"
+#include "mddual/planning/checker_registry.h"
 
 namespace ob = ompl::base;
 namespace mp = mddual::planning;
@@ -49,9 +51,10 @@ struct Totals {
   int mdd_colliding = 0;
   int fcl_colliding = 0;
   int mdd_only = 0;  // FCL valid, mdd invalid
-  int fcl_only = 0;  // mdd valid, FCL invalid
+  int fcl_only = 0;  // mdd valid, fcl or fcl-fine invalid
   double mdd_edge_s = 0.0;
   double fcl_edge_s = 0.0;
+  double fine_edge_s = 0.0;
   int states = 0;
   double mdd_state_s = 0.0;
   double fcl_state_s = 0.0;
@@ -66,6 +69,7 @@ struct Totals {
     fcl_only += o.fcl_only;
     mdd_edge_s += o.mdd_edge_s;
     fcl_edge_s += o.fcl_edge_s;
+    fine_edge_s += o.fine_edge_s;
     states += o.states;
     mdd_state_s += o.mdd_state_s;
     fcl_state_s += o.fcl_state_s;
@@ -77,10 +81,12 @@ struct Totals {
 void printRow(const std::string& name, const Totals& t) {
   const double e = std::max(1, t.edges);
   const double s = std::max(1, t.states);
-  std::printf("| %s | %d | %.0f%% | %d | %d | %.1f | %.1f | %s | %s | %.2f | %s | %s | %.2f |\n", name.c_str(), t.edges,
-              100.0 * t.mdd_colliding / e, t.mdd_only, t.fcl_only, static_cast<double>(t.queries) / e,
-              static_cast<double>(t.fcl_states) / e, mddual::bench::micros(t.mdd_edge_s / e).c_str(),
-              mddual::bench::micros(t.fcl_edge_s / e).c_str(), t.fcl_edge_s / std::max(1e-12, t.mdd_edge_s),
+  const double mdd = std::max(1e-12, t.mdd_edge_s);
+  std::printf("| %s | %d | %.0f%% | %d | %d | %.1f | %.1f | %s | %s | %.2f | %s | %.1f | %s | %s | %.2f |\n",
+              name.c_str(), t.edges, 100.0 * t.mdd_colliding / e, t.mdd_only, t.fcl_only,
+              static_cast<double>(t.queries) / e, static_cast<double>(t.fcl_states) / e,
+              mddual::bench::micros(t.mdd_edge_s / e).c_str(), mddual::bench::micros(t.fcl_edge_s / e).c_str(),
+              t.fcl_edge_s / mdd, mddual::bench::micros(t.fine_edge_s / e).c_str(), t.fine_edge_s / mdd,
               mddual::bench::micros(t.mdd_state_s / s).c_str(), mddual::bench::micros(t.fcl_state_s / s).c_str(),
               t.fcl_state_s / std::max(1e-12, t.mdd_state_s));
 }
@@ -90,14 +96,22 @@ Totals runProblem(const mp::ArmProblem& p, int edges, double range, int passes) 
   auto si_mdd = std::make_shared<ob::SpaceInformation>(space->stateSpace());
   const mp::ArmChecking mdd = mp::useExactChecking(si_mdd, space, p.scene);
   si_mdd->setup();
+  // fcl and fcl-fine, as the checker table installs them for `mddual bench`.
   auto fcl_scene = std::make_shared<const mp::FclArmScene>(p.scene);
-  auto space_fcl = mp::ArmSpace::make(p.space->modelPtr(), p.space->variables(), p.start);
-  auto si_fcl = std::make_shared<ob::SpaceInformation>(space_fcl->stateSpace());
-  auto fcl_states = std::make_shared<mp::FclArmStateValidityChecker>(si_fcl, space_fcl, fcl_scene);
-  si_fcl->setStateValidityChecker(fcl_states);
-  auto fcl_motions = std::make_shared<ob::DiscreteMotionValidator>(si_fcl);
-  si_fcl->setMotionValidator(fcl_motions);
-  si_fcl->setup();
+  struct Peer {
+    mp::ArmSpacePtr space;
+    ob::SpaceInformationPtr si;
+    mp::InstalledChecker installed;
+  };
+  const auto peer = [&](const std::string& name) {
+    Peer out;
+    out.space = mp::ArmSpace::make(p.space->modelPtr(), p.space->variables(), p.start);
+    out.si = std::make_shared<ob::SpaceInformation>(out.space->stateSpace());
+    out.installed = mp::findArmChecker(name).install({out.si, out.space, p.scene, fcl_scene});
+    out.si->setup();
+    return out;
+  };
+  const Peer fcl = peer("fcl"), fine = peer("fcl-fine");
 
   // 1. Draw the edges (on si_mdd; the two spaces are alike).
   const double max_length = range * si_mdd->getMaximumExtent();
@@ -128,33 +142,38 @@ Totals runProblem(const mp::ArmProblem& p, int edges, double range, int passes) 
     for (std::size_t i = 0; i < g.size(); ++i) full[static_cast<std::size_t>(sp.variables()[i])] = g[i];
     sp.setState(s, full.data());
   };
-  ob::ScopedState<> m0(si_mdd), m1(si_mdd), f0(si_fcl), f1(si_fcl);
+  ob::ScopedState<> m0(si_mdd), m1(si_mdd), f0(fcl.si), f1(fcl.si), g0(fine.si), g1(fine.si);
   for (int pass = 0; pass < passes; ++pass) {
     Totals t;
     for (const Edge& e : drawn) {
       setGroup(*space, m0.get(), e.q0);
       setGroup(*space, m1.get(), e.q1);
-      setGroup(*space_fcl, f0.get(), e.q0);
-      setGroup(*space_fcl, f1.get(), e.q1);
+      setGroup(*fcl.space, f0.get(), e.q0);
+      setGroup(*fcl.space, f1.get(), e.q1);
+      setGroup(*fine.space, g0.get(), e.q0);
+      setGroup(*fine.space, g1.get(), e.q1);
       double t0 = nowSeconds(true);
       const bool mdd_ok = mdd.motion_validator->checkMotion(m0.get(), m1.get());
       double t1 = nowSeconds(true);
-      const auto before = fcl_states->counts().state_checks;
-      const bool fcl_ok = fcl_motions->checkMotion(f0.get(), f1.get());
+      const auto before = fcl.installed.counts().state_checks;
+      const bool fcl_ok = fcl.si->checkMotion(f0.get(), f1.get());
       double t2 = nowSeconds(true);
-      t.fcl_states += static_cast<long>(fcl_states->counts().state_checks - before);
+      const bool fine_ok = fine.si->checkMotion(g0.get(), g1.get());
+      const double t3 = nowSeconds(true);
+      t.fcl_states += static_cast<long>(fcl.installed.counts().state_checks - before);
       t.queries += mdd.motion_validator->edgeContact(m0.get(), m1.get(), mp::EdgeQuery::kValidity).distance_queries;
       t.mdd_edge_s += t1 - t0;
       t.fcl_edge_s += t2 - t1;
+      t.fine_edge_s += t3 - t2;
       ++t.edges;
       t.mdd_colliding += mdd_ok ? 0 : 1;
       t.fcl_colliding += fcl_ok ? 0 : 1;
       t.mdd_only += (!mdd_ok && fcl_ok) ? 1 : 0;
-      t.fcl_only += (mdd_ok && !fcl_ok) ? 1 : 0;
+      t.fcl_only += (mdd_ok && !(fcl_ok && fine_ok)) ? 1 : 0;
       t0 = nowSeconds(true);
       (void)si_mdd->isValid(m1.get());
       t1 = nowSeconds(true);
-      (void)si_fcl->isValid(f1.get());
+      (void)fcl.si->isValid(f1.get());
       t2 = nowSeconds(true);
       t.mdd_state_s += t1 - t0;
       t.fcl_state_s += t2 - t1;
@@ -165,6 +184,7 @@ Totals runProblem(const mp::ArmProblem& p, int edges, double range, int passes) 
     } else {
       best.mdd_edge_s = std::min(best.mdd_edge_s, t.mdd_edge_s);
       best.fcl_edge_s = std::min(best.fcl_edge_s, t.fcl_edge_s);
+      best.fine_edge_s = std::min(best.fine_edge_s, t.fine_edge_s);
       best.mdd_state_s = std::min(best.mdd_state_s, t.mdd_state_s);
       best.fcl_state_s = std::min(best.fcl_state_s, t.fcl_state_s);
     }
@@ -175,7 +195,7 @@ Totals runProblem(const mp::ArmProblem& p, int edges, double range, int passes) 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"mdd's certified arm edges against FCL with OMPL's discrete validator, per check"};
+  CLI::App app{"mdd's certified arm edges against FCL with OMPL's discrete validator (fcl, fcl-fine), per check"};
   std::string dir, urdf, srdf;
   int problems = 5, edges = 200, passes = 2;
   unsigned seed = 1;
@@ -196,8 +216,8 @@ int main(int argc, char** argv) {
     const auto files = mddual::scene::listMbmProblems(dir);
     std::printf(
         "| problem | edges | colliding | mdd only | fcl only | mdd queries | fcl states | mdd us/edge | fcl us/edge | "
-        "fcl/mdd | mdd us/state | "
-        "fcl us/state | fcl/mdd |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "fcl/mdd | fcl-fine us/edge | fine/mdd | mdd us/state | fcl us/state | fcl/mdd |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     Totals all;
     for (std::size_t i = 0; i < files.size() && static_cast<int>(i) < problems; ++i) {
       const mp::ArmProblem p = mp::loadArmProblem(robot, files[i]);

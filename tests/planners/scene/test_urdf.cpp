@@ -237,6 +237,13 @@ TEST(UrdfErrors, JointLoopsAreRefusedBeforeUrdfdom) {
 </robot>)");
   expectSceneError([&] { loadRobotModel(two); },
                    {"two.urdf:6: joint 'j3'", "link 'c' is already the child of joint 'j2'"});
+  // Not well-formed XML is refused before urdfdom, whose parser takes text
+  // after the root element and would then meet the loop.
+  const auto trailing = dir.write("trailing.urdf", "<robot name=\"r\">\n" + links + R"(
+<joint name="j2" type="fixed"><parent link="b"/><child link="b"/></joint>
+</robot>[)");
+  expectSceneError([&] { loadRobotModel(trailing); },
+                   {"trailing.urdf:5: not a valid URDF", "not well-formed XML", "XML_ERROR_PARSING_TEXT"});
   // A tree is untouched by the check.
   const auto tree = dir.write("tree.urdf", "<robot name=\"r\">\n" + links + R"(
 <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>

@@ -2,16 +2,19 @@
 // arm problems) and hull_cast.cpp (the Bullet peer on an ArmScene) share.
 #pragma once
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <Eigen/Geometry>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 #include "convert.h"
 #include "mddual/planning/arm_scene.h"
 #include "mddual/scene/robot_model.h"
 #include "mddual/scene/srdf.h"
+#include "planning_convert.h"
 #include "typed.h"
 
 namespace mddual::python {
@@ -54,6 +57,30 @@ struct ArmSceneHandle {
   template <class T, class F>
   py::object perConfiguration(const ArrayLikeArg& q, int threads, const F& f) const;
 };
+
+/// The edges from the configurations of Q0 to those of Q1 (an edge per row;
+/// one of them may be a single configuration), each checked by edge(q0, q1)
+/// -> (collides, fraction) on `threads` workers without the GIL: a
+/// tuple (bool, float) when neither is a batch, else of two arrays.
+template <class F>
+EdgeResults edgeBatch(const ArrayLikeArg& q0, const ArrayLikeArg& q1, const scene::RobotModel& model, int threads,
+                      const F& edge) {
+  const StateBatch a = configBatchFrom(q0, "Q0", model);
+  const StateBatch b = configBatchFrom(q1, "Q1", model);
+  const std::size_t n = batchSizeOf(a, "Q0", b, "Q1");
+  py::array_t<bool> collides(static_cast<py::ssize_t>(n));
+  py::array_t<double> fraction(static_cast<py::ssize_t>(n));
+  {
+    bool* c = collides.mutable_data();
+    double* f = fraction.mutable_data();
+    py::gil_scoped_release release;
+    const int nv = model.numVariables();
+    parallelFor(n, workerCount(threads, n),
+                [&](std::size_t k) { std::tie(c[k], f[k]) = edge(a.row(k, nv), b.row(k, nv)); });
+  }
+  if (!a.batched && !b.batched) return py::make_tuple(py::bool_(collides.at(0)), py::float_(fraction.at(0)));
+  return py::make_tuple(collides, fraction);
+}
 
 /// ArmScene.contact's dict for a contact `c` of `scene`: link, other_link (a
 /// self-collision) or world_piece and world_piece_origin (the others None).

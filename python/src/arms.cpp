@@ -105,26 +105,13 @@ ArmContactResult ArmSceneHandle::contact(const ArrayLikeArg& q) const {
 
 EdgeResults ArmSceneHandle::checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact,
                                        int threads) const {
-  const StateBatch a = configBatchFrom(q0, "Q0", *model);
-  const StateBatch b = configBatchFrom(q1, "Q1", *model);
-  const std::size_t n = batchSizeOf(a, "Q0", b, "Q1");
-  py::array_t<bool> collides(static_cast<py::ssize_t>(n));
-  py::array_t<double> fraction(static_cast<py::ssize_t>(n));
-  {
-    bool* c = collides.mutable_data();
-    double* f = fraction.mutable_data();
-    py::gil_scoped_release release;
-    const int nv = model->numVariables();
-    const mp::EdgeQuery query = first_contact ? mp::EdgeQuery::kFirstContact : mp::EdgeQuery::kValidity;
-    parallelFor(n, workerCount(threads, n), [&](std::size_t k) {
-      const mp::ArmEdgeResult r = scene->checkEdge(a.row(k, nv), b.row(k, nv), query);
-      c[k] = r.collides;
-      // kValidity stops at any contact: its fraction bounds nothing.
-      f[k] = r.collides && !first_contact ? std::numeric_limits<double>::quiet_NaN() : r.fraction;
-    });
-  }
-  if (!a.batched && !b.batched) return py::make_tuple(py::bool_(collides.at(0)), py::float_(fraction.at(0)));
-  return py::make_tuple(collides, fraction);
+  const mp::EdgeQuery query = first_contact ? mp::EdgeQuery::kFirstContact : mp::EdgeQuery::kValidity;
+  return edgeBatch(q0, q1, *model, threads, [&](const double* a, const double* b) {
+    const mp::ArmEdgeResult r = scene->checkEdge(a, b, query);
+    // kValidity stops at any contact: its fraction bounds nothing.
+    return std::make_pair(r.collides,
+                          r.collides && !first_contact ? std::numeric_limits<double>::quiet_NaN() : r.fraction);
+  });
 }
 
 namespace {

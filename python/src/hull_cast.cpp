@@ -198,25 +198,12 @@ class ArmHullCast {
                          int threads) const {
     const mp::ArmHullCastMotionValidator& v =
         castSegmentsFrom(segments) == mp::CastSegments::kWholeEdge ? *whole_edge_ : *resolution_;
-    const StateBatch a = configBatchFrom(q0, "Q0", *model_);
-    const StateBatch b = configBatchFrom(q1, "Q1", *model_);
-    const std::size_t n = batchSizeOf(a, "Q0", b, "Q1");
-    py::array_t<bool> collides(static_cast<py::ssize_t>(n));
-    py::array_t<double> fraction(static_cast<py::ssize_t>(n));
-    {
-      bool* c = collides.mutable_data();
-      double* f = fraction.mutable_data();
-      py::gil_scoped_release release;
-      const int nv = model_->numVariables();
-      parallelFor(n, workerCount(threads, n), [&](std::size_t k) {
-        StateHolder s1(space_->stateSpace()), s2(space_->stateSpace()), last(space_->stateSpace());
-        space_->setState(s1.get(), a.row(k, nv));
-        space_->setState(s2.get(), b.row(k, nv));
-        std::tie(c[k], f[k]) = checkOne(v, s1.get(), s2.get(), last.get());
-      });
-    }
-    if (!a.batched && !b.batched) return py::make_tuple(py::bool_(collides.at(0)), py::float_(fraction.at(0)));
-    return py::make_tuple(collides, fraction);
+    return edgeBatch(q0, q1, *model_, threads, [&](const double* a, const double* b) {
+      StateHolder s1(space_->stateSpace()), s2(space_->stateSpace()), last(space_->stateSpace());
+      space_->setState(s1.get(), a);
+      space_->setState(s2.get(), b);
+      return checkOne(v, s1.get(), s2.get(), last.get());
+    });
   }
 
   int segmentCount(const ArrayLikeArg& q0, const ArrayLikeArg& q1) const {

@@ -155,14 +155,19 @@ class ArmScene {
   /// Lower bound of pair p's distance at link poses X_WL, searched below
   /// `upper`: +infinity when every piece pair is at least `upper` apart.
   double pairBound(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, double upper) const;
-  /// One side of a pair for pairBound: the world (link < 0) or a link, by
-  /// its cluster hulls (`coarse`, where it has them) or its pieces.
+  /// One side of a pair: the world (link < 0) or a link, at a level of
+  /// detail: its cluster hulls of that level (where it has them) or, at
+  /// kPieceLevel, its pieces.
   struct Side {
     const Bvh* tree;
     const std::vector<const ConvexPolytope*>* polytopes;
-    bool coarse;
   };
-  Side side(int link, bool coarse) const;
+  /// Levels of detail, coarse to fine: cluster hulls (kClusterSizes in
+  /// arm_scene.cpp), then the pieces at kPieceLevel.
+  static constexpr int kPieceLevel = 2;
+  Side side(int link, int level) const;
+  /// Whether a side of p is finer at `level` than at level - 1.
+  bool refines(const Pair& p, int level) const;
   bool pairCollides(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const;
   double pairDistance(const Pair& p, const std::vector<Eigen::Isometry3d>& X_WL, ArmContact* which) const;
   /// checkEdge's search for the first contact of pair p on [a, b], every
@@ -170,12 +175,10 @@ class ArmScene {
   struct EdgeWork;
   /// The time window around the probe of `w` (at most tau) in which pair p
   /// keeps the contact distance, from each node pair's own motion bound
-  /// (docs/design/arms.md); a negative value when the coarse bound of some
-  /// piece pair is already within the contact distance at the probe.
-  /// `coarse`: on the links' cluster hulls where they have them, else on their pieces.
-  double pairWindow(EdgeWork& w, const Pair& p, double tau, bool coarse) const;
-  /// Whether a side of p has cluster hulls.
-  bool hasClusters(const Pair& p) const;
+  /// (docs/design/arms.md), on the two sides at `level`; a negative value
+  /// when a leaf pair of that level is already within the contact distance
+  /// at the probe.
+  double pairWindow(EdgeWork& w, const Pair& p, double tau, int level) const;
   bool certify(EdgeWork& w, int p, double a, double b, int depth) const;
 
   std::shared_ptr<const scene::RobotModel> model_;
@@ -188,11 +191,14 @@ class ArmScene {
   std::vector<const ConvexPolytope*> world_polytopes_;
   std::vector<Bvh> link_trees_;  ///< per link, frame L (empty for links without pieces)
   std::vector<std::vector<const ConvexPolytope*>> link_polytopes_;
-  /// Per link of many pieces, the hulls of clusters of them (frame L) and
-  /// their tree: the coarse level of pairBound. Empty for other links.
-  std::vector<std::vector<ConvexPolytope>> link_clusters_;
-  std::vector<std::vector<const ConvexPolytope*>> cluster_polytopes_;
-  std::vector<Bvh> cluster_trees_;
+  /// Per level below kPieceLevel and link of many pieces, the hulls of
+  /// clusters of its pieces (frame L) and their tree. Empty for other links.
+  struct Clusters {
+    std::vector<ConvexPolytope> hulls;
+    std::vector<const ConvexPolytope*> polytopes;
+    Bvh tree;
+  };
+  std::vector<Clusters> clusters_[kPieceLevel];
   std::vector<std::pair<int, int>> self_pairs_;
   std::vector<Pair> pairs_;
   double scale_ = 1.0;  ///< size of the robot and world (round-off slack)

@@ -224,7 +224,7 @@ struct GjkOutcome {
 };
 
 GjkOutcome runGjk(const PairGeometry& pair, const Eigen::Vector3d& o_A, const DistanceWarmStart* warm,
-                  DistanceStats* stats, double enough = std::numeric_limits<double>::infinity()) {
+                  DistanceStats* stats, double enough = std::numeric_limits<double>::infinity(), double rel_gap = 0.0) {
   SearchStats search;
   GjkOutcome out;
   Simplex& s = out.simplex;
@@ -279,7 +279,7 @@ GjkOutcome runGjk(const PairGeometry& pair, const Eigen::Vector3d& o_A, const Di
     hint_b = m.vb;
     const SimplexPoint w = point(m.va, m.vb);
     out.lower = std::max(out.lower, v.dot(w.p) / vn);
-    if (vn - out.lower <= gap_tol || out.lower >= enough) break;
+    if (vn - out.lower <= std::max(gap_tol, rel_gap * vn) || out.lower >= enough) break;
     if (s.contains(m.va, m.vb)) {
       out.stalled = true;
       break;
@@ -454,11 +454,14 @@ void saveWarm(const Simplex& s, DistanceWarmStart* warm) {
 }  // namespace
 }  // namespace detail
 
-double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm, double enough) {
+double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm, double enough, double rel_gap) {
   if (std::isnan(enough)) throw InvalidInputError("separationLowerBound: enough is NaN");
+  if (!(rel_gap >= 0.0 && rel_gap < 1.0)) {
+    throw InvalidInputError("separationLowerBound: rel_gap must be in [0, 1) (got " + std::to_string(rel_gap) + ")");
+  }
   const detail::PairGeometry pair(input.a, input.X_WA, input.b, input.X_WB, "separationLowerBound");
   DistanceStats stats;
-  const detail::GjkOutcome g = detail::runGjk(pair, Eigen::Vector3d::Zero(), warm, &stats, enough);
+  const detail::GjkOutcome g = detail::runGjk(pair, Eigen::Vector3d::Zero(), warm, &stats, enough, rel_gap);
   detail::saveWarm(g.simplex, warm);
   if (g.contact || !(g.upper > pair.touchTolerance())) return 0.0;
   // g.lower is certified whether or not GJK closed its gap.

@@ -284,7 +284,7 @@ TEST(Distance, RandomBlobs) {
 // `enough` (or the distance, when that is smaller) and still never above it.
 TEST(Distance, SeparationLowerBoundBracketsTheDistance) {
   Rng rng(seed(808));
-  int separated = 0, overlapping = 0, stopped_early = 0;
+  int separated = 0, overlapping = 0, stopped_early = 0, rough_early = 0;
   for (int i = 0; i < samples(300) && !HasFailure(); ++i) {
     const double s = std::pow(10.0, uniform(rng, -2.0, 2.0));
     const ConvexPolytope a = ConvexPolytope::fromPoints(randomBlob(rng, s));
@@ -305,6 +305,10 @@ TEST(Distance, SeparationLowerBoundBracketsTheDistance) {
       EXPECT_GE(half, 0.5 * d) << i;
       EXPECT_LE(half, d + slack) << i;
       stopped_early += half < lb ? 1 : 0;
+      const double rough = separationLowerBound(in, nullptr, std::numeric_limits<double>::infinity(), 0.25);
+      EXPECT_GE(rough, 0.75 * d - slack) << i;
+      EXPECT_LE(rough, d + slack) << i;
+      rough_early += rough < lb - slack ? 1 : 0;
     } else if (d < -slack) {
       ++overlapping;
       EXPECT_EQ(lb, 0.0) << i;
@@ -314,11 +318,15 @@ TEST(Distance, SeparationLowerBoundBracketsTheDistance) {
   EXPECT_GE(separated, samples(300) / 3);
   EXPECT_GE(overlapping, samples(300) / 10);
   EXPECT_GE(stopped_early, separated / 10);  // `enough` does cut GJK short
+  EXPECT_GE(rough_early, separated / 10);    // and so does rel_gap
   DistanceInput in;
   const ConvexPolytope cube = ConvexPolytope::fromPoints(generators::box(Eigen::Vector3d::Constant(0.5)));
   in.a = &cube;
   in.b = &cube;
   EXPECT_THROW(separationLowerBound(in, nullptr, std::numeric_limits<double>::quiet_NaN()), InvalidInputError);
+  EXPECT_THROW(separationLowerBound(in, nullptr, 1.0, 1.0), InvalidInputError);
+  EXPECT_THROW(separationLowerBound(in, nullptr, 1.0, -0.1), InvalidInputError);
+  EXPECT_THROW(separationLowerBound(in, nullptr, 1.0, std::numeric_limits<double>::quiet_NaN()), InvalidInputError);
 }
 
 TEST(Distance, RandomBoxes) {

@@ -105,8 +105,12 @@ DistanceResult distance(const DistanceInput& input, DistanceWarmStart* warm = nu
 /// overlapping pairs). Never above the true distance. GJK stops as soon as
 /// its bound reaches `enough` (then the answer is >= enough but may be below
 /// the distance): what a nearest-pair search needs of a pair that cannot beat
-/// its best so far. Errors and thread safety as distance().
+/// its best so far. With `rel_gap` in [0, 1), GJK may also stop once its bound
+/// is within rel_gap of its current upper bound (then the answer is at least
+/// (1 - rel_gap) times the distance): what a caller that only scales a step
+/// by the distance needs. Errors (also a rel_gap outside [0, 1)) and thread
+/// safety as distance().
 double separationLowerBound(const DistanceInput& input, DistanceWarmStart* warm = nullptr,
-                            double enough = std::numeric_limits<double>::infinity());
+                            double enough = std::numeric_limits<double>::infinity(), double rel_gap = 0.0);
 
 }  // namespace mddual

@@ -20,6 +20,12 @@ using detail::kInf;
 constexpr double kRateSlackRel = 1e-9;
 /// Shortest interval (fraction of the edge) the recursion splits.
 constexpr double kMinInterval = 1e-12;
+/// GJK on a leaf pair of pairWindow stops once its lower bound is within
+/// this fraction of its upper bound: the window shrinks by at most that
+/// much, and GJK runs fewer iterations. On arm7 (mddual_bench_arm_edges,
+/// bookshelf_thin and cage) 0.25 took 10% fewer instructions per motion
+/// check than GJK's full precision, 0.02 5%, 0.5 no fewer than 0.25.
+constexpr double kWindowGapRel = 0.25;
 
 std::vector<const ConvexPolytope*> polytopesOf(const std::vector<scene::Piece>& pieces) {
   std::vector<const ConvexPolytope*> out;
@@ -475,7 +481,9 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
       // earlier probe of this edge): the nearest features move little.
       const std::uint64_t key = (static_cast<std::uint64_t>((&p - pairs_.data()) * (kPieceLevel + 1) + level) << 42) |
                                 (static_cast<std::uint64_t>(ea) << 21) | static_cast<std::uint64_t>(eb);
-      const double d = separationLowerBound(in, w.warmStart(key), cd + best * rho);
+      DistanceWarmStart* warm = w.warmStart(key);
+      double d = separationLowerBound(in, warm, cd + best * rho, kWindowGapRel);
+      if (d <= cd) d = separationLowerBound(in, warm, cd + best * rho);  // no false alarm from the gap
       if (d <= cd) return -1.0;
       if (rho > 0.0) best = std::min(best, (d - cd) / rho);
       continue;

@@ -452,25 +452,27 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
   std::vector<std::pair<int, int>>& stack = w.stack;
   stack.clear();
   stack.push_back({A.side.tree->root(), B.side.tree->root()});
+  const bool world_pair = p.other < 0;
   while (!stack.empty()) {
     const auto [ea, eb] = stack.back();
     stack.pop_back();
     const Bvh::Node& na = A.side.tree->node(ea);
     const Bvh::Node& nb = B.side.tree->node(eb);
-    const Eigen::Vector3d ca_W = A.X_WS * na.centre;
+    // Side A is the world (identity pose) or a link.
+    const Eigen::Vector3d ca_W = world_pair ? na.centre : Eigen::Vector3d(A.X_WS * na.centre);
     const Eigen::Vector3d cb_W = B.X_WS * nb.centre;
-    const double slack = kBvhSlackRel * (na.scale + nb.scale + scale_);
-    // The larger of the balls' gap and each ball's gap to the other node's
-    // box (in that node's frame): boxes are far tighter than balls on flat
-    // pieces such as shelves.
+    const double rho = rate(A, ea, ca_W, na.radius) + rate(B, eb, cb_W, nb.radius);
+    // The pair is dropped when any lower bound of the nodes' distance keeps
+    // the contact distance over the window: the balls' gap, or each ball's
+    // gap to the other node's box (in that node's frame; boxes are far
+    // tighter than balls on flat pieces such as shelves). Cheapest first.
+    const double need = cd + best * rho + kBvhSlackRel * (na.scale + nb.scale + scale_);
+    if ((ca_W - cb_W).norm() - na.radius - nb.radius >= need) continue;
     const auto ballToBox = [](const Bvh::Node& n, const Eigen::Vector3d& c_S, double r) {
       return (n.box.min() - c_S).cwiseMax(c_S - n.box.max()).cwiseMax(0.0).norm() - r;
     };
-    const double bound = std::max({(ca_W - cb_W).norm() - na.radius - nb.radius,
-                                   ballToBox(na, A.X_SW * cb_W, nb.radius), ballToBox(nb, B.X_SW * ca_W, na.radius)}) -
-                         slack;
-    const double rho = rate(A, ea, ca_W, na.radius) + rate(B, eb, cb_W, nb.radius);
-    if (bound - cd >= best * rho) continue;
+    if (ballToBox(na, world_pair ? cb_W : Eigen::Vector3d(A.X_SW * cb_W), nb.radius) >= need) continue;
+    if (ballToBox(nb, B.X_SW * ca_W, na.radius) >= need) continue;
     if (na.isLeaf() && nb.isLeaf()) {
       DistanceInput in;
       in.a = (*A.side.polytopes)[static_cast<std::size_t>(A.side.tree->leafPiece(ea))];

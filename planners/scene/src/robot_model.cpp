@@ -93,6 +93,14 @@ RobotModel::RobotModel(std::string name, std::vector<Link> links, std::vector<Jo
       throw SceneError(who + ": mimic joint " + quote(joint.name) + ": its leader is not a moving joint");
     }
   }
+  for (const Joint& joint : joints_) {
+    PoseKernel k;
+    k.origin_turns = !joint.X_PJ.linear().isIdentity(0.0);
+    for (int i = 0; i < 3 && joint.moves() && joint.type != JointType::kPrismatic; ++i) {
+      if (joint.axis_J == Eigen::Vector3d::Unit(i)) k.axis = i;
+    }
+    kernels_.push_back(k);
+  }
   for (Link& l : links_) {
     l.radius = 0.0;
     for (const Piece& p : l.pieces) {
@@ -147,29 +155,35 @@ void RobotModel::linkPoses(const double* q, std::vector<Eigen::Isometry3d>* X_BL
   X_BL->resize(links_.size());
   (*X_BL)[0].setIdentity();
   for (std::size_t k = 1; k < links_.size(); ++k) {
-    const Joint& j = joints_[static_cast<std::size_t>(links_[k].parent_joint)];
+    const std::size_t ji = static_cast<std::size_t>(links_[k].parent_joint);
+    const Joint& j = joints_[ji];
+    const PoseKernel& kernel = kernels_[ji];
+    const Eigen::Isometry3d& P = (*X_BL)[static_cast<std::size_t>(j.parent_link)];
     Eigen::Isometry3d& X = (*X_BL)[k];
-    X = (*X_BL)[static_cast<std::size_t>(j.parent_link)] * j.X_PJ;
+    // X = P * X_PJ, without the products that an origin with no turn (most
+    // URDF joints) does not need.
+    X.translation().noalias() = P.translation() + P.linear() * j.X_PJ.translation();
+    if (kernel.origin_turns) {
+      X.linear().noalias() = P.linear() * j.X_PJ.linear();
+    } else {
+      X.linear() = P.linear();
+    }
     if (!j.moves()) continue;
     const double value = j.value(q[j.variable]);
     if (j.type == JointType::kPrismatic) {
       X.translation() += X.linear() * (value * j.axis_J);
       continue;
     }
-    // A turn about a coordinate axis (most URDF joints) mixes two columns;
-    // any other axis goes through its rotation matrix.
-    int axis = -1;
-    for (int i = 0; i < 3; ++i) {
-      if (j.axis_J[i] == 1.0 && j.axis_J[(i + 1) % 3] == 0.0 && j.axis_J[(i + 2) % 3] == 0.0) axis = i;
-    }
-    if (axis < 0) {
+    // A turn about a coordinate axis mixes two columns; any other axis goes
+    // through its rotation matrix.
+    if (kernel.axis < 0) {
       X.linear() = X.linear() * Eigen::AngleAxisd(value, j.axis_J).toRotationMatrix();
       continue;
     }
     const double c = std::cos(value);
     const double s = std::sin(value);
-    const int u = (axis + 1) % 3;
-    const int v = (axis + 2) % 3;
+    const int u = (kernel.axis + 1) % 3;
+    const int v = (kernel.axis + 2) % 3;
     const Eigen::Vector3d cu = X.linear().col(u);
     const Eigen::Vector3d cv = X.linear().col(v);
     X.linear().col(u) = c * cu + s * cv;

@@ -146,10 +146,18 @@ class RobotModel {
   double reach(int j, int k) const;
 
  private:
+  /// What linkPoses needs per joint beyond Joint, set up once: the
+  /// coordinate axis of a revolute joint turning about +x, +y or +z (-1 for
+  /// any other axis), and whether the joint's origin turns the frame.
+  struct PoseKernel {
+    int axis = -1;
+    bool origin_turns = true;
+  };
   std::string name_;
   std::vector<Link> links_;
   std::vector<Joint> joints_;
   std::vector<int> variable_joint_;
+  std::vector<PoseKernel> kernels_;
 };
 
 /// Reads a URDF (see the file comment). `warnings` (if not null) receives

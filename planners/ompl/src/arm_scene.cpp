@@ -80,7 +80,7 @@ struct ArmScene::EdgeWork {
   const Probe* at = nullptr;
   /// pairWindow's scratch per side, and GJK's warm starts per (pair, leaf, leaf).
   struct SideScratch {
-    std::vector<double> speed, rates;
+    std::vector<double> rates;
   };
   SideScratch sides[2];
   std::vector<std::pair<int, int>> stack;
@@ -143,6 +143,29 @@ struct ArmScene::EdgeWork {
     const double h = std::ldexp(1.0, e - 1);
     const double t = std::round(tm / h) * h;
     return t > a && t < b ? t : tm;
+  }
+
+  /// How far (world units per unit |t - probe|) a point of a ball (centre
+  /// c_W, radius r) moved by `movers` can get from where it is at the probe
+  /// `at`: per joint, its speed times the ball's distance from the joint's
+  /// axis at the probe, never more than the joint's reach. Turning the
+  /// joints one after the other from the root, each turn moves the point by
+  /// at most its angle times the point's distance from that axis at the
+  /// probe, whatever the later joints do (docs/design/arms.md).
+  double ballRate(const std::vector<Mover>& movers, const Eigen::Vector3d& c_W, double r) const {
+    double rho = 0.0;
+    for (const Mover& mv : movers) {
+      const double speed = std::abs(dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier;
+      if (speed == 0.0) continue;
+      double arm = 1.0;  // prismatic: the ball moves at the joint's speed
+      if (!mv.prismatic) {
+        const std::size_t j = static_cast<std::size_t>(mv.joint);
+        const Eigen::Vector3d v = c_W - at->o_W[j];
+        arm = std::min(mv.reach, (v - v.dot(at->u_W[j]) * at->u_W[j]).norm() + r);
+      }
+      rho += speed * arm;
+    }
+    return rho * (1.0 + kRateSlackRel);
   }
 
   /// Makes `at` the robot at time t, computed or kept from before.
@@ -391,60 +414,31 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
     Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d X_SW = Eigen::Isometry3d::Identity();
     const std::vector<Mover>* movers = nullptr;
-    /// Per mover: its speed |m dq| (the scratch of EdgeWork::sides).
-    const EdgeWork::SideScratch* scratch = nullptr;
     /// Per node of the side's tree: its ball's rate, once computed (< 0: not yet).
     std::vector<double>* rates = nullptr;
   };
-  const auto make = [&](int link, const std::vector<Mover>* movers, EdgeWork::SideScratch* scratch) {
+  const auto make = [&](int link, const std::vector<Mover>* movers) {
     Moving m;
     m.side = side(link, level);
     if (link < 0) return m;
     m.X_WS = w.at->X_WL[static_cast<std::size_t>(link)];
     m.X_SW = m.X_WS.inverse();
     m.movers = movers;
-    m.scratch = scratch;
-    const std::size_t n = movers->size();
-    scratch->speed.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Mover& mv = (*movers)[i];
-      scratch->speed[i] = std::abs(w.dq[static_cast<std::size_t>(mv.variable)]) * mv.multiplier;
-    }
     return m;
   };
-  Moving A = p.other < 0 ? make(-1, nullptr, nullptr) : make(p.link, &p.link_movers, &w.sides[0]);
-  Moving B = p.other < 0 ? make(p.link, &p.link_movers, &w.sides[1]) : make(p.other, &p.other_movers, &w.sides[1]);
+  Moving A = p.other < 0 ? make(-1, nullptr) : make(p.link, &p.link_movers);
+  Moving B = p.other < 0 ? make(p.link, &p.link_movers) : make(p.other, &p.other_movers);
   for (Moving* m : {&A, &B}) {
     if (m->movers == nullptr) continue;  // the world: no rates
     std::vector<double>& rates = w.sides[m == &A ? 0 : 1].rates;
     rates.assign(static_cast<std::size_t>(m->side.tree->numNodes()), -1.0);
     m->rates = &rates;
   }
-  // How far (world units per unit |t - probe|) a point of a ball (centre
-  // c_W, radius r) of a side can get from where it is at the probe: per
-  // joint, its speed times the ball's distance from the joint's axis at the
-  // probe, never more than the joint's reach. Turning the joints one after
-  // the other from the root, each turn moves the point by at most its angle
-  // times the point's distance from that axis at the probe, whatever the
-  // later joints do (docs/design/arms.md).
+  // Each node's ball's rate (EdgeWork::ballRate), computed once per node.
   const auto rate = [&](const Moving& m, int node, const Eigen::Vector3d& c_W, double r) {
     if (m.movers == nullptr) return 0.0;
     double& cached = (*m.rates)[static_cast<std::size_t>(node)];
-    if (cached >= 0.0) return cached;
-    double rho = 0.0;
-    for (std::size_t i = 0; i < m.movers->size(); ++i) {
-      const Mover& mv = (*m.movers)[i];
-      const double speed = m.scratch->speed[i];
-      if (speed == 0.0) continue;
-      double arm = 1.0;  // prismatic: the ball moves at the joint's speed
-      if (!mv.prismatic) {
-        const std::size_t j = static_cast<std::size_t>(mv.joint);
-        const Eigen::Vector3d v = c_W - w.at->o_W[j];
-        arm = std::min(mv.reach, (v - v.dot(w.at->u_W[j]) * w.at->u_W[j]).norm() + r);
-      }
-      rho += speed * arm;
-    }
-    cached = rho * (1.0 + kRateSlackRel);
+    if (cached < 0.0) cached = w.ballRate(*m.movers, c_W, r);
     return cached;
   };
   const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
@@ -513,6 +507,21 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
   return best;
 }
 
+bool ArmScene::rootBallsClear(const EdgeWork& w, const Pair& p, double tau) const {
+  const auto ball = [&](int link, const std::vector<Mover>& movers, Eigen::Vector3d* c_W, double* r) {
+    const Bvh& tree = *side(link, 0).tree;
+    const Bvh::Node& n = tree.node(tree.root());
+    *c_W = w.at->X_WL[static_cast<std::size_t>(link)] * n.centre;
+    *r = n.radius;
+    return w.ballRate(movers, *c_W, n.radius) * tau + kBvhSlackRel * n.scale;
+  };
+  Eigen::Vector3d ca_W, cb_W;
+  double ra = 0.0, rb = 0.0;
+  const double reach = ball(p.link, p.link_movers, &ca_W, &ra) + ball(p.other, p.other_movers, &cb_W, &rb);
+  const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
+  return (ca_W - cb_W).norm() - ra - rb - kBvhSlackRel * scale_ - cd >= reach;
+}
+
 bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const {
   const Pair& pair = pairs_[static_cast<std::size_t>(p)];
   if (a >= w.limit) return false;
@@ -539,16 +548,19 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
     if (pairBound(pair, w.at->X_WL, cd) > cd) return false;
     return contactAt(a, pairCollides(pair, w.at->X_WL, nullptr));
   }
-  // 1. Each node pair's own motion bound: the window around tm where the
-  //    pair keeps the contact distance, up to the farther end of [a, b].
   const double tau = std::max(tm - a, b - tm);
+  // 1. Two links whose bounding balls keep the contact distance over all of
+  //    [a, b]: clear (the walk's first test, without its set-up).
+  if (pair.other >= 0 && rootBallsClear(w, pair, tau)) return false;
+  // 2. Each node pair's own motion bound: the window around tm where the
+  //    pair keeps the contact distance, up to the farther end of [a, b].
   double window = -1.0;
   for (int level = 0; level <= kPieceLevel && window < 0.0; ++level) {
     if (level == 0 || refines(pair, level)) window = pairWindow(w, pair, tau, level);
   }
   if (window >= tau) return false;  // clear of the contact distance on all of [a, b]
   if (window < 0.0) {
-    // 2. A piece pair within the contact distance at tm: a contact. The
+    // 3. A piece pair within the contact distance at tm: a contact. The
     //    first one: certify [a, tm) first.
     const bool state = pairCollides(pair, w.at->X_WL, nullptr);
     if (w.query == EdgeQuery::kValidity) return contactAt(tm, state);

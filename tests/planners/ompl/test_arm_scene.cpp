@@ -168,6 +168,50 @@ TEST(ArmScene, FastEdgesThroughABoxOnTheirPathAreCertified) {
   }
 }
 
+// Self-collision alone (no world): edges of arm7 from a free state through
+// a random self-colliding state q* at a random time t*, to a free end. Each
+// self pair's search first asks whether the two links' bounding balls keep
+// apart over the interval, with their motion bounds; a weakened bound there
+// calls such an edge free.
+TEST(ArmScene, SelfCollisionEdgesAreCertified) {
+  const ArmFixture f = makeArm();
+  const ArmScene s(f.model, std::make_shared<const scene::World>(std::vector<scene::Piece>{}, "empty"),
+                   f.scene->filter());
+  ASSERT_EQ(s.numPairs(), static_cast<int>(s.selfPairs().size()));
+  Rng rng(testing::seed() + 3);
+  // Contacts far from the middle, where the first probe is.
+  std::uniform_real_distribution<double> when(0.05, 0.95);
+  const int n = 100 * testing::scale();
+  int sampled = 0, tried = 0;
+  while (sampled < n) {
+    ASSERT_LT(++tried, 100 * n) << "too few edges with free ends";
+    const std::vector<double> q0 = randomConfiguration(*f.model, rng);
+    std::vector<double> q_star = randomConfiguration(*f.model, rng);
+    if (tried % 2 == 0) {
+      // One joint turns (the others keep q0's values): its motion bound is
+      // then nearly the speed of the link's farthest point.
+      const std::size_t v = std::uniform_int_distribution<std::size_t>(0, q0.size() - 1)(rng);
+      const double value = q_star[v];
+      q_star = q0;
+      q_star[v] = value;
+    }
+    if (!s.collides(q_star.data()) || s.collides(q0.data())) continue;
+    const double t_star = when(rng);
+    std::vector<double> q1(q0.size());
+    for (std::size_t v = 0; v < q1.size(); ++v) q1[v] = q0[v] + (q_star[v] - q0[v]) / t_star;
+    if (s.collides(q1.data())) continue;
+    ++sampled;
+    const ArmEdgeResult validity = s.checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity);
+    ASSERT_TRUE(validity.collides) << "edge " << sampled << " missed (self collision at t* = " << t_star << ")";
+    const ArmEdgeResult first = s.checkEdge(q0.data(), q1.data(), EdgeQuery::kFirstContact);
+    ASSERT_TRUE(first.collides);
+    // At or before the first colliding state of a dense check (t* or earlier).
+    const double dense = denseFirstContact(s, q0, q1, 2000);
+    ASSERT_LE(dense, t_star + 1.0 / 2000);
+    EXPECT_LE(first.fraction, dense) << "edge " << sampled;
+  }
+}
+
 TEST(ArmScene, RejectsBadInput) {
   const ArmFixture f = makeArm();
   EXPECT_THROW(ArmScene(nullptr, armWorld(), scene::AllowedCollisions()), InvalidInputError);

@@ -179,6 +179,9 @@ class ArmScene {
   /// when a leaf pair of that level is already within the contact distance
   /// at the probe.
   double pairWindow(EdgeWork& w, const Pair& p, double tau, int level) const;
+  /// Whether the bounding balls of a self pair's two links keep the contact
+  /// distance for |t - probe| <= tau (the probe of w).
+  bool rootBallsClear(const EdgeWork& w, const Pair& p, double tau) const;
   bool certify(EdgeWork& w, int p, double a, double b, int depth) const;
 
   std::shared_ptr<const scene::RobotModel> model_;

@@ -78,11 +78,25 @@ struct ArmScene::EdgeWork {
   std::size_t next = 1;
   /// The current probe (poseAt()).
   const Probe* at = nullptr;
-  /// pairWindow's scratch per side, and GJK's warm starts per (pair, leaf, leaf).
+  /// pairWindow's scratch per side: each node's ball rate, valid when its
+  /// stamp is the side's current one (one stamp per pairWindow call, so no
+  /// call clears the buffer). And GJK's warm starts per (pair, leaf, leaf).
   struct SideScratch {
-    std::vector<double> rates;
+    std::vector<std::pair<std::uint32_t, double>> rates;
+    std::uint32_t stamp = 0;
+    /// Ready for a tree of n nodes; no entry valid.
+    void start(int n) {
+      if (rates.size() < static_cast<std::size_t>(n)) rates.resize(static_cast<std::size_t>(n), {0, 0.0});
+      if (++stamp == 0) {  // wrapped: forget every entry
+        for (auto& e : rates) e.first = 0;
+        stamp = 1;
+      }
+    }
   };
   SideScratch sides[2];
+  /// Per pair, whether no joint between its sides moves on this edge
+  /// (-1: not known yet).
+  std::vector<signed char> still;
   std::vector<std::pair<int, int>> stack;
 
   /// GJK's warm starts, per (pair, leaf, leaf) key: an open-addressing table
@@ -112,7 +126,7 @@ struct ArmScene::EdgeWork {
   }
 
   /// Ready for a new edge from q0 with changes q1 - q0.
-  void reset(const double* q0_in, const double* q1, int nv, EdgeQuery query_in, ArmEdgeResult* result_in) {
+  void reset(const double* q0_in, const double* q1, int nv, int pairs, EdgeQuery query_in, ArmEdgeResult* result_in) {
     q0 = q0_in;
     dq.resize(static_cast<std::size_t>(nv));
     for (int v = 0; v < nv; ++v) dq[static_cast<std::size_t>(v)] = q1[v] - q0[v];
@@ -128,6 +142,7 @@ struct ArmScene::EdgeWork {
       stamp = 1;
     }
     warm_used = 0;
+    still.assign(static_cast<std::size_t>(pairs), -1);
   }
 
   /// Where the search of [a, b] probes: its midpoint moved to the nearest
@@ -414,8 +429,8 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
     Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d X_SW = Eigen::Isometry3d::Identity();
     const std::vector<Mover>* movers = nullptr;
-    /// Per node of the side's tree: its ball's rate, once computed (< 0: not yet).
-    std::vector<double>* rates = nullptr;
+    /// Per node of the side's tree: its ball's rate, once computed.
+    EdgeWork::SideScratch* scratch = nullptr;
   };
   const auto make = [&](int link, const std::vector<Mover>* movers) {
     Moving m;
@@ -430,16 +445,15 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
   Moving B = p.other < 0 ? make(p.link, &p.link_movers) : make(p.other, &p.other_movers);
   for (Moving* m : {&A, &B}) {
     if (m->movers == nullptr) continue;  // the world: no rates
-    std::vector<double>& rates = w.sides[m == &A ? 0 : 1].rates;
-    rates.assign(static_cast<std::size_t>(m->side.tree->numNodes()), -1.0);
-    m->rates = &rates;
+    m->scratch = &w.sides[m == &A ? 0 : 1];
+    m->scratch->start(m->side.tree->numNodes());
   }
   // Each node's ball's rate (EdgeWork::ballRate), computed once per node.
   const auto rate = [&](const Moving& m, int node, const Eigen::Vector3d& c_W, double r) {
     if (m.movers == nullptr) return 0.0;
-    double& cached = (*m.rates)[static_cast<std::size_t>(node)];
-    if (cached < 0.0) cached = w.ballRate(*m.movers, c_W, r);
-    return cached;
+    auto& cached = m.scratch->rates[static_cast<std::size_t>(node)];
+    if (cached.first != m.scratch->stamp) cached = {m.scratch->stamp, w.ballRate(*m.movers, c_W, r)};
+    return cached.second;
   };
   const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
   double best = tau;
@@ -542,7 +556,9 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
   const double tm = EdgeWork::probeTime(a, b);
   w.poseAt(*this, tm);
   ++r.distance_queries;
-  if (pairRate(p, w.dq.data()) == 0.0) {
+  signed char& still = w.still[static_cast<std::size_t>(p)];
+  if (still < 0) still = pairRate(p, w.dq.data()) == 0.0 ? 1 : 0;
+  if (still == 1) {
     // The pair does not move relative to itself: its distance at tm is its
     // distance on all of [a, b].
     if (pairBound(pair, w.at->X_WL, cd) > cd) return false;
@@ -582,7 +598,7 @@ ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery 
     }
   }
   thread_local EdgeWork w;
-  w.reset(q0, q1, nv, query, &result);
+  w.reset(q0, q1, nv, numPairs(), query, &result);
   if (query == EdgeQuery::kValidity) {
     // The end state first: a planner often extends into an obstacle, and one
     // state check then settles the edge. More states (the middle, the

@@ -69,13 +69,14 @@ ArmMotionValidator::ArmMotionValidator(const ob::SpaceInformationPtr& si, ArmSpa
   checkArguments("ArmMotionValidator", si, space_, scene_.get(), scene_ ? &scene_->model() : nullptr);
 }
 
-ArmEdgeResult ArmMotionValidator::edgeContact(const ob::State* s1, const ob::State* s2, EdgeQuery query) const {
+ArmEdgeResult ArmMotionValidator::edgeContact(const ob::State* s1, const ob::State* s2, EdgeQuery query,
+                                              double fraction_tolerance) const {
   requireState(s1, "ArmMotionValidator: s1");
   requireState(s2, "ArmMotionValidator: s2");
   const std::size_t n = space_->fixedConfiguration().size();
   std::vector<double> q0(n), q1(n);
   space_->edge(s1, s2, q0.data(), q1.data());
-  const ArmEdgeResult r = scene_->checkEdge(q0.data(), q1.data(), query);
+  const ArmEdgeResult r = scene_->checkEdge(q0.data(), q1.data(), query, fraction_tolerance);
   counters_.addPairQueries(static_cast<std::uint64_t>(r.distance_queries));
   counters_.addSubEdges(static_cast<std::uint64_t>(r.intervals));
   return r;
@@ -97,7 +98,9 @@ bool ArmMotionValidator::checkMotion(const ob::State* s1, const ob::State* s2,
   counters_.addMotionCheck();
   double first_invalid = 0.0;
   if (si_->satisfiesBounds(s1)) {
-    const ArmEdgeResult r = edgeContact(s1, s2, EdgeQuery::kLastValid);
+    // lastValid: a bound as fine as OMPL's discrete check's (one of its steps).
+    const double tolerance = 1.0 / std::max(1u, si_->getStateSpace()->validSegmentCount(s1, s2));
+    const ArmEdgeResult r = edgeContact(s1, s2, EdgeQuery::kLastValid, tolerance);
     first_invalid = r.collides ? r.fraction : std::numeric_limits<double>::infinity();
     // Bounds: both ends within them keep the whole segment within them;
     // otherwise s2 alone is out, and the contact bound stands below 1.

@@ -74,6 +74,9 @@ struct ArmScene::EdgeWork {
   ArmEdgeResult* result = nullptr;
   /// Search only below this fraction (the best first contact so far).
   double limit = kInf;
+  /// kLastValid: how far below `limit` a pair may stop (checkEdge's
+  /// fraction_tolerance).
+  double tolerance = 0.0;
   std::vector<Probe> probes = std::vector<Probe>(kProbes);
   std::size_t next = 1;
   /// The current probe (poseAt()).
@@ -95,8 +98,9 @@ struct ArmScene::EdgeWork {
   };
   SideScratch sides[2];
   /// Per pair, whether no joint between its sides moves on this edge
-  /// (-1: not known yet).
-  std::vector<signed char> still;
+  /// (-1: not known yet), and whether the validity search cleared it on the
+  /// whole edge.
+  std::vector<signed char> still, cleared;
   std::vector<std::pair<int, int>> stack;
 
   /// GJK's warm starts, per (pair, leaf, leaf) key: an open-addressing table
@@ -134,6 +138,7 @@ struct ArmScene::EdgeWork {
     query = query_in;
     result = result_in;
     limit = kInf;
+    tolerance = 0.0;
     for (Probe& p : probes) p.t = -1.0;
     next = 1;
     at = nullptr;
@@ -143,6 +148,7 @@ struct ArmScene::EdgeWork {
     }
     warm_used = 0;
     still.assign(static_cast<std::size_t>(pairs), -1);
+    cleared.assign(static_cast<std::size_t>(pairs), 0);
   }
 
   /// Where the search of [a, b] probes: its midpoint moved to the nearest
@@ -553,6 +559,17 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
     return true;
   };
   if (depth > options_.max_depth || b - a < kMinInterval) return contactAt(a, false);
+  // kLastValid: a pair clear up to within the tolerance of the best contact
+  // so far stops; `a` bounds its own first contact, and the edge's fraction
+  // stays at most the tolerance below the best contact.
+  if (w.query == EdgeQuery::kLastValid && a >= w.limit - w.tolerance) {
+    if (a < r.fraction) {
+      r.fraction = a;
+      r.state_collides = false;
+      r.contact = {pair.link, -1, pair.other};
+    }
+    return true;
+  }
   const double tm = EdgeWork::probeTime(a, b);
   w.poseAt(*this, tm);
   ++r.distance_queries;
@@ -579,9 +596,9 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
     // 3. A piece pair within the contact distance at tm: a contact. The
     //    first one: certify [a, tm) first.
     const bool state = pairCollides(pair, w.at->X_WL, nullptr);
-    if (w.query == EdgeQuery::kValidity) return contactAt(tm, state);
-    if (certify(w, p, a, tm, depth + 1)) return true;
-    return contactAt(tm, state);
+    contactAt(tm, state);
+    if (w.query != EdgeQuery::kValidity) certify(w, p, a, tm, depth + 1);
+    return true;
   }
   window *= 1.0 - kRateSlackRel;
   if (tm - window > a && certify(w, p, a, tm - window, depth + 1)) return true;
@@ -589,50 +606,75 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
   return false;
 }
 
-ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery query) const {
+ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery query,
+                                  double fraction_tolerance) const {
   const int nv = model_->numVariables();
   ArmEdgeResult result;
+  if (!(fraction_tolerance >= 0.0 && fraction_tolerance <= 1.0)) {
+    throw InvalidInputError("ArmScene::checkEdge: fraction_tolerance must be in [0, 1] (got " +
+                            std::to_string(fraction_tolerance) + ")");
+  }
   for (int v = 0; v < nv; ++v) {
     if (!std::isfinite(q0[v]) || !std::isfinite(q1[v])) {
       throw InvalidInputError("ArmScene::checkEdge: variable " + model_->variableName(v) + " is not finite");
     }
   }
   thread_local EdgeWork w;
-  w.reset(q0, q1, nv, numPairs(), query, &result);
-  if (query == EdgeQuery::kValidity) {
-    // The end state first: a planner often extends into an obstacle, and one
-    // state check then settles the edge. More states (the middle, the
-    // quarters) cost more than they save before the search, which probes
-    // the middle first anyway (mddual_bench_arm_edges, bookshelf_thin:
-    // instructions in checkEdge 240M with the quarters, 229M with the middle,
-    // 225M with the end alone). The pair that found the last contact goes
-    // first: a planner meets the same obstacle again and again.
-    ArmContact which;
-    const int first = last_contact_.load(std::memory_order_relaxed);
-    for (const double t : {1.0}) {
-      w.poseAt(*this, t);
-      for (int i = -1; i < numPairs(); ++i) {
-        const int p = i < 0 ? first : i;
-        if (p < 0 || (i >= 0 && p == first)) continue;
-        if (!pairCollides(pairs_[static_cast<std::size_t>(p)], w.at->X_WL, &which)) continue;
-        last_contact_.store(p, std::memory_order_relaxed);
-        result.collides = true;
-        result.fraction = t;
-        result.state_collides = true;
-        result.contact = which;
-        return result;
-      }
+  // 1. Validity (kValidity, and kLastValid first): stops at any contact.
+  const bool validity_first = query != EdgeQuery::kFirstContact;
+  w.reset(q0, q1, nv, numPairs(), validity_first ? EdgeQuery::kValidity : query, &result);
+  const int first = last_contact_.load(std::memory_order_relaxed);
+  // The pairs in search order: the pair that found the last contact first
+  // (a planner meets the same obstacle again and again), then the others.
+  const auto forEachPair = [&](auto&& visit) {
+    for (int i = -1; i < numPairs(); ++i) {
+      const int p = i < 0 ? first : i;
+      if (p < 0 || (i >= 0 && p == first)) continue;
+      if (!visit(p)) return;
     }
+  };
+  if (validity_first) {
+    // 1a. The end state: a planner often extends into an obstacle, and one
+    //     state check then settles the edge. More states (the middle, the
+    //     quarters) cost more than they save before the search, which probes
+    //     the middle first anyway (mddual_bench_arm_edges, bookshelf_thin and
+    //     cage: 3% to 7% more instructions with the middle).
+    w.poseAt(*this, 1.0);
+    ArmContact which;
+    forEachPair([&](int p) {
+      if (!pairCollides(pairs_[static_cast<std::size_t>(p)], w.at->X_WL, &which)) return true;
+      last_contact_.store(p, std::memory_order_relaxed);
+      result.collides = true;
+      result.fraction = 1.0;
+      result.state_collides = true;
+      result.contact = which;
+      return false;
+    });
+    // 1b. Pair by pair, until a contact.
+    if (!result.collides) {
+      forEachPair([&](int p) {
+        if (certify(w, p, 0.0, 1.0, 0)) {
+          last_contact_.store(p, std::memory_order_relaxed);
+          return false;
+        }
+        w.cleared[static_cast<std::size_t>(p)] = 1;  // clear on all of [0, 1]
+        return true;
+      });
+    }
+    if (query == EdgeQuery::kValidity || !result.collides) return result;
+    // kLastValid on a colliding edge: the contact found bounds the search.
+    w.query = query;
+    w.limit = result.fraction;
+    w.tolerance = fraction_tolerance;
   }
-  // Pair by pair; with a first contact, each pair searches only before the
-  // best contact so far (EdgeWork::limit).
-  const int first = query == EdgeQuery::kValidity ? last_contact_.load(std::memory_order_relaxed) : -1;
-  for (int i = -1; i < numPairs(); ++i) {
-    const int p = i < 0 ? first : i;
-    if (p < 0 || (i >= 0 && p == first)) continue;
-    if (certify(w, p, 0.0, 1.0, 0)) last_contact_.store(p, std::memory_order_relaxed);
-    if (result.collides && query == EdgeQuery::kValidity) break;
-  }
+  // 2. The first contact: pair by pair, each searching only before the best
+  //    contact so far (EdgeWork::limit).
+  forEachPair([&](int p) {
+    if (w.cleared[static_cast<std::size_t>(p)] == 0 && certify(w, p, 0.0, std::min(1.0, w.limit), 0)) {
+      last_contact_.store(p, std::memory_order_relaxed);
+    }
+    return true;
+  });
   return result;
 }
 

@@ -90,7 +90,7 @@ TEST(ArmScene, EdgeChecksAreCertified) {
   Rng rng(testing::seed() + 1);
   const int n = 150 * testing::scale();
   const int steps = 2000;
-  int colliding = 0, free_edges = 0, false_alarms = 0, sampled = 0;
+  int colliding = 0, free_edges = 0, false_alarms = 0, sampled = 0, lowered = 0;
   while (sampled < n) {
     // Valid start; the end a random configuration or (one edge in two) a
     // short step, which stays near contact more often.
@@ -104,12 +104,20 @@ TEST(ArmScene, EdgeChecksAreCertified) {
     const double dense = denseFirstContact(*f.scene, q0, q1, steps);
     const ArmEdgeResult validity = f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity);
     const ArmEdgeResult first = f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kFirstContact);
+    // kLastValid with OMPL's kind of tolerance: a lower bound, at most the
+    // tolerance below the first-contact search's.
+    const double tolerance = 0.05;
+    const ArmEdgeResult last = f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kLastValid, tolerance);
     EXPECT_EQ(validity.collides, first.collides) << "edge " << sampled;
+    EXPECT_EQ(validity.collides, last.collides) << "edge " << sampled;
     if (std::isfinite(dense)) {
       ++colliding;
       ASSERT_TRUE(validity.collides) << "missed a colliding edge (dense contact at " << dense << ")";
       ASSERT_TRUE(first.collides);
       EXPECT_LE(first.fraction, dense) << "the first-contact bound is after a colliding state";
+      EXPECT_LE(last.fraction, dense) << "the lastValid bound is after a colliding state";
+      EXPECT_GE(last.fraction, first.fraction - tolerance - 1e-9) << "edge " << sampled;
+      lowered += last.fraction < first.fraction ? 1 : 0;
     } else {
       ++free_edges;
       if (validity.collides) ++false_alarms;
@@ -117,6 +125,7 @@ TEST(ArmScene, EdgeChecksAreCertified) {
   }
   EXPECT_GE(colliding, n / 5) << "too few colliding edges";
   EXPECT_GE(free_edges, n / 5) << "too few free edges";
+  EXPECT_GE(lowered, colliding / 10) << "the tolerance never cut a lastValid search short";
   // Reported, not asserted: edges refused that the dense check passes.
   RecordProperty("false_alarms", false_alarms);
   std::printf("arm7 edges: %d colliding, %d free, %d false alarms\n", colliding, free_edges, false_alarms);
@@ -224,6 +233,10 @@ TEST(ArmScene, RejectsBadInput) {
   std::vector<double> q1 = q0;
   q1[2] = std::nan("");
   EXPECT_THROW(f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity), InvalidInputError);
+  q1 = q0;
+  EXPECT_THROW(f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kLastValid, -0.1), InvalidInputError);
+  EXPECT_THROW(f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kLastValid, 1.5), InvalidInputError);
+  EXPECT_THROW(f.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kLastValid, std::nan("")), InvalidInputError);
 }
 
 }  // namespace

@@ -75,7 +75,8 @@ class ArmMotionValidator : public CountedMotionValidator {
                    std::pair<ompl::base::State*, double>& lastValid) const override;
   /// The edge's result (ArmScene::checkEdge on the configurations of s1 and
   /// s2 under OMPL's interpolation); bounds are not looked at.
-  ArmEdgeResult edgeContact(const ompl::base::State* s1, const ompl::base::State* s2, EdgeQuery query) const;
+  ArmEdgeResult edgeContact(const ompl::base::State* s1, const ompl::base::State* s2, EdgeQuery query,
+                            double fraction_tolerance = 0.0) const;
 
  private:
   ArmSpacePtr space_;

@@ -106,9 +106,12 @@ class ArmScene {
   double clearance(const double* q, ArmContact* which = nullptr) const;
   /// The certified motion check of the edge from q0 to q1 (see the file
   /// comment); `query` as MddScene's: kValidity first tests the state at
-  /// t = 1 and stops at any contact; kFirstContact and
-  /// kLastValid return the lower bound of the first one.
-  ArmEdgeResult checkEdge(const double* q0, const double* q1, EdgeQuery query) const;
+  /// t = 1 and stops at any contact; kFirstContact returns the lower bound
+  /// of the first one; kLastValid decides as kValidity (a free edge costs
+  /// what kValidity costs) and, on a colliding edge, returns a lower bound
+  /// of the first contact at most `fraction_tolerance` (in [0, 1]) below it
+  /// (the motion validator passes one of OMPL's discrete steps).
+  ArmEdgeResult checkEdge(const double* q0, const double* q1, EdgeQuery query, double fraction_tolerance = 0.0) const;
 
   /// Link poses X_WL at q.
   void linkPoses(const double* q, std::vector<Eigen::Isometry3d>* X_WL) const;

@@ -200,6 +200,16 @@ TEST(ArmCheckers, KeepOmplsContract) {
       EXPECT_GE(s.arm.scene->clearance(l1.data()), 0.999 * s.arm.scene->options().contact_distance) << "edge " << i;
       ++kept;
     }
+    // The same of the scene's exact kLastValid (no tolerance), whose
+    // fraction sits at the contact distance itself.
+    const ArmEdgeResult exact = s.arm.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kLastValid);
+    ASSERT_TRUE(exact.collides);
+    std::vector<double> qe(8);
+    for (std::size_t v = 0; v < qe.size(); ++v) qe[v] = q0[v] + exact.fraction * (q1[v] - q0[v]);
+    EXPECT_FALSE(verifier.checkEdge(q0.data(), qe.data(), EdgeQuery::kValidity).collides) << "edge " << i;
+    if (exact.fraction > 0.0) {
+      EXPECT_GE(s.arm.scene->clearance(qe.data()), 0.999 * s.arm.scene->options().contact_distance) << "edge " << i;
+    }
   }
   EXPECT_GE(invalid, 10);
   EXPECT_GE(valid, 10);

@@ -247,9 +247,8 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
     const std::size_t ku = static_cast<std::size_t>(k);
     link_polytopes_[ku] = polytopesOf(link.pieces);
     if (!link.pieces.empty()) link_trees_[ku] = Bvh::fromPolytopes(link_polytopes_[ku]);
-    for (int level = 0; level < kPieceLevel; ++level) {
-      const int n = static_cast<int>(link.pieces.size());
-      if (n <= kClusterPieces) continue;
+    const int n = static_cast<int>(link.pieces.size());
+    for (int level = 0; level < kPieceLevel && n > kClusterPieces; ++level) {
       Clusters& c = clusters_[level][ku];
       c.hulls = scene::clusterHulls(link.pieces, clusterSize(level, n));
       if (level > 0 && c.hulls.size() == clusters_[level - 1][ku].hulls.size()) {
@@ -262,6 +261,7 @@ ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_p
     if (link.parent_joint >= 0) reach = std::max(reach, model_->reach(model_->jointPath(k).front(), k));
   }
   scale_ = std::max({1.0, reach, world_->box().isEmpty() ? 0.0 : world_->box().diagonal().norm()});
+  search_distance_ = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
 
   const int nv = model_->numVariables();
   // Per variable, how far the joints it drives on `joints` can move link k.
@@ -430,8 +430,8 @@ double ArmScene::clearance(const double* q, ArmContact* which) const {
 }
 
 double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) const {
-  // One side: its tree (cluster hulls where the link has them), pose and
-  // the joints that move it, with the suffix sums of their motion bounds.
+  // One side: its tree at `level`, pose, the joints that move it and the
+  // rates of its nodes' balls.
   struct Moving {
     Side side;
     Eigen::Isometry3d X_WS = Eigen::Isometry3d::Identity();
@@ -463,7 +463,7 @@ double ArmScene::pairWindow(EdgeWork& w, const Pair& p, double tau, int level) c
     if (cached.first != m.scratch->stamp) cached = {m.scratch->stamp, w.ballRate(*m.movers, c_W, r)};
     return cached.second;
   };
-  const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
+  const double cd = search_distance_;
   double best = tau;
   std::vector<std::pair<int, int>>& stack = w.stack;
   stack.clear();
@@ -540,7 +540,7 @@ bool ArmScene::rootBallsClear(const EdgeWork& w, const Pair& p, double tau) cons
   Eigen::Vector3d ca_W, cb_W;
   double ra = 0.0, rb = 0.0;
   const double reach = ball(p.link, p.link_movers, &ca_W, &ra) + ball(p.other, p.other_movers, &cb_W, &rb);
-  const double cd = options_.contact_distance + kRateSlackRel * scale_ * 1e-3;
+  const double cd = search_distance_;
   return (ca_W - cb_W).norm() - ra - rb - kBvhSlackRel * scale_ - cd >= reach;
 }
 
@@ -550,28 +550,25 @@ bool ArmScene::certify(EdgeWork& w, int p, double a, double b, int depth) const 
   ArmEdgeResult& r = *w.result;
   ++r.intervals;
   const double cd = options_.contact_distance;
-  auto contactAt = [&](double t, bool state) {
+  // A bound t of the pair's first contact; contactAt also bounds the search.
+  auto report = [&](double t, bool state) {
     r.collides = true;
     if (t < r.fraction) {
       r.fraction = t;
       r.state_collides = state;
       r.contact = {pair.link, -1, pair.other};
     }
-    w.limit = std::min(w.limit, t);
     return true;
+  };
+  auto contactAt = [&](double t, bool state) {
+    w.limit = std::min(w.limit, t);
+    return report(t, state);
   };
   if (depth > options_.max_depth || b - a < kMinInterval) return contactAt(a, false);
   // kLastValid: a pair clear up to within the tolerance of the best contact
   // so far stops; `a` bounds its own first contact, and the edge's fraction
   // stays at most the tolerance below the best contact.
-  if (w.query == EdgeQuery::kLastValid && a >= w.limit - w.tolerance) {
-    if (a < r.fraction) {
-      r.fraction = a;
-      r.state_collides = false;
-      r.contact = {pair.link, -1, pair.other};
-    }
-    return true;
-  }
+  if (w.query == EdgeQuery::kLastValid && a >= w.limit - w.tolerance) return report(a, false);
   const double tm = EdgeWork::probeTime(a, b);
   w.poseAt(*this, tm);
   ++r.distance_queries;

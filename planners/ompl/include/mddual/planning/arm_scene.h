@@ -208,6 +208,9 @@ class ArmScene {
   std::vector<std::pair<int, int>> self_pairs_;
   std::vector<Pair> pairs_;
   double scale_ = 1.0;  ///< size of the robot and world (round-off slack)
+  /// The clearance the search proves: the contact distance plus the
+  /// round-off slack of the motion bounds.
+  double search_distance_ = 0.0;
   /// The pair of the last contact a validity check found: checked first
   /// next time (a hint only; any thread may overwrite it).
   mutable std::atomic<int> last_contact_{-1};

@@ -4,8 +4,9 @@
 Reads the summary tables of docs/results/arms.md (arm7) and
 docs/results/panda.md (the Panda), keeps the rows of one planner
 (RRTConnectkConfigDefault unless --planner says otherwise) and writes one
-line per (robot, problem set): success, median planning time and invalid
-solutions for each checker, between the markers `<!-- arms:begin -->` and
+line per (robot, problem set): success, median planning time (the planner's
+own solve time, `median solve (s)`, where the page has it, else OMPL's
+`median time (s)`) and invalid solutions for each checker, between the markers `<!-- arms:begin -->` and
 `<!-- arms:end -->` of README.md (--readme names another file; --readme -
 prints to standard output). A page that is missing is skipped; none at all
 is an error.
@@ -21,13 +22,18 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import readme_markers  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-HEADER = ("| config | planner | checker | runs | success | median time (s) | time / FCL | solved time (s) | "
-          "checking | state checks | motion checks | invalid | invalid raw |")
+HEADER_START = "| config | planner | checker |"
+NEEDED = ["config", "planner", "checker", "success", "median time (s)", "invalid"]
 CHECKERS = ["mdd", "fcl", "fcl-fine", "hull-cast"]
 
 
+def cells_of(line):
+    return [c.strip() for c in line.strip().strip("|").split("|")]
+
+
 def read_page(path):
-    """The robot named in the page's title, its "Made by" line and its rows (lists of cells)."""
+    """The robot named in the page's title, its "Made by" line and its rows
+    (dicts from the summary tables' column names to cells)."""
     with open(path) as f:
         lines = [line.rstrip("\n") for line in f]
     if not lines or not lines[0].startswith("# ") or " on its MotionBenchMaker problem sets" not in lines[0]:
@@ -37,37 +43,46 @@ def read_page(path):
     if made is None:
         raise SystemExit("arm_headline: %s: no \"Made by\" line" % path)
     rows = []
-    in_table = False
+    header = None
     for number, line in enumerate(lines, 1):
-        if line == HEADER:
-            in_table = True
+        if line.startswith(HEADER_START):
+            header = cells_of(line)
+            missing = [n for n in NEEDED if n not in header]
+            if missing:
+                raise SystemExit("arm_headline: %s:%d: the summary table has no column %s" % (path, number, missing[0]))
             continue
-        in_table = in_table and line.startswith("|")
-        if not in_table or line.startswith("|---"):
+        if header is None or not line.startswith("|"):
+            header = None
             continue
-        cells = [c.strip() for c in line.strip().strip("|").split("|")]
-        if len(cells) != 13:
-            raise SystemExit("arm_headline: %s:%d: not a row of 13 cells" % (path, number))
-        rows.append(cells)
+        if line.startswith("|---"):
+            continue
+        cells = cells_of(line)
+        if len(cells) != len(header):
+            raise SystemExit("arm_headline: %s:%d: not a row of %d cells" % (path, number, len(header)))
+        rows.append(dict(zip(header, cells)))
     if not rows:
         raise SystemExit("arm_headline: %s: no summary table" % path)
     return robot, made, rows
 
 
 def headline(pages, planner):
-    checkers = [c for c in CHECKERS if any(r[2] == c for _, _, rows in pages for r in rows)]
+    checkers = [c for c in CHECKERS if any(r["checker"] == c for _, _, rows in pages for r in rows)]
     joined = " / ".join(checkers)
-    lines = ["| robot, set | success %s | median time (s) %s | invalid solutions %s |" % (joined, joined, joined),
+    # The planner's own solve time when every page has it (OMPL's time adds
+    # its harness's thread stop to every run; bench_report.py).
+    every = all("median solve (s)" in r for _, _, rows in pages for r in rows)
+    time = "median solve (s)" if every else "median time (s)"
+    lines = ["| robot, set | success %s | %s %s | invalid solutions %s |" % (joined, time, joined, joined),
              "|---|---|---|---|"]
     for robot, _, rows in pages:
         sets = []
         for r in rows:
-            if r[1] == planner and r[0] not in sets:
-                sets.append(r[0])
+            if r["planner"] == planner and r["config"] not in sets:
+                sets.append(r["config"])
         for s in sets:
-            by = {r[2]: r for r in rows if r[0] == s and r[1] == planner}
-            cell = lambda i: " / ".join(by[c][i] if c in by else "-" for c in checkers)  # noqa: E731
-            lines.append("| %s, %s | %s | %s | %s |" % (robot, s, cell(4), cell(5), cell(11)))
+            by = {r["checker"]: r for r in rows if r["config"] == s and r["planner"] == planner}
+            cell = lambda name: " / ".join(by[c][name] if c in by else "-" for c in checkers)  # noqa: E731
+            lines.append("| %s, %s | %s | %s | %s |" % (robot, s, cell("success"), cell(time), cell("invalid")))
     if len(lines) == 2:
         raise SystemExit("arm_headline: no row of planner %s" % planner)
     return lines

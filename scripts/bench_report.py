@@ -18,10 +18,18 @@ Per config, planner and checker:
                   and invalid solutions alike);
   time / FCL      that median over the same planner's with the `fcl` checker
                   (FCL states + OMPL's discrete motion validator);
+  median solve    the same median over the planner's own solve() time (run
+                  property `solve time`, measured around the planner alone):
+                  OMPL 1.5's benchmark "time" also holds the stop of its
+                  termination-condition thread, up to 1 ms per run whatever
+                  the checker, which hides the checker's share on runs of a
+                  millisecond ("-" for logs without the property);
+  solve / FCL     that median over the same planner's with the `fcl` checker;
   solved time     median planning time of the runs that returned an exact
                   solution, valid or not ("-" if none): the planner's raw speed;
-  checking        median share of the planning time spent in the checkers
-                  (run property `checking time`);
+  checking        median share of the planner's solve time (OMPL's time for
+                  logs without `solve time`) spent in the checkers (run
+                  property `checking time`);
   state / motion checks   medians over all runs;
   invalid         exact solutions the verification found in collision (its
                   exact MDD edge check or its dense FCL check);
@@ -30,7 +38,7 @@ Per config, planner and checker:
 Runs whose verification failed with an error (`verification error`) count as
 neither verified nor invalid and are listed under the table.
 
-Run properties read (columns of `runs`): time, solved, approximate_solution,
+Run properties read (columns of `runs`): time, solve_time, solved, approximate_solution,
 state_checks, motion_checks, pair_queries, checking_time, verified,
 invalid_solution, invalid_raw_solution, verification_error. Python standard
 library, plus matplotlib (Debian's python3-matplotlib) for the plots.
@@ -66,7 +74,7 @@ def load(db_path):
         if needed not in exp_cols:
             raise SystemExit("bench_report: %s: experiments have no '%s' parameter (not written by mddual bench?)"
                              % (db_path, needed))
-    wanted = ["time", "solved", "approximate_solution", "state_checks", "motion_checks", "pair_queries",
+    wanted = ["time", "solve_time", "solved", "approximate_solution", "state_checks", "motion_checks", "pair_queries",
               "checking_time", "invalid_solution", "verified", "invalid_raw_solution", "verification_error",
               "run_index", "memory", "verification_time", "verification_mdd_time", "verification_fcl_time"]
     present = [c for c in wanted if c in run_cols]
@@ -95,9 +103,17 @@ def verified(r):
     return exact(r) and not r.get("invalid_solution")  # databases without the property
 
 
-def counted_time(r):
-    """Planning time of a run with a verified solution, else the time limit."""
-    return r["time"] if verified(r) and r.get("time") is not None else r["timelimit"]
+def counted_time(r, field="time"):
+    """Planning time (OMPL's `time`, or `solve_time`) of a run with a verified
+    solution, else the time limit; None when the run has no such field."""
+    if r.get(field) is None:
+        return None
+    return r[field] if verified(r) else r["timelimit"]
+
+
+def planner_time(r):
+    """The planner's own solve time where the log has it, else OMPL's time."""
+    return r["solve_time"] if r.get("solve_time") is not None else r.get("time")
 
 
 def summarise(rows):
@@ -107,13 +123,16 @@ def summarise(rows):
     stats = {}
     for key, runs in groups.items():
         solved = [r for r in runs if exact(r)]
-        shares = [r["checking_time"] / r["time"] for r in runs
-                  if r.get("checking_time") is not None and r.get("time")]
+        shares = [r["checking_time"] / planner_time(r) for r in runs
+                  if r.get("checking_time") is not None and planner_time(r)]
+        solves = [counted_time(r, "solve_time") for r in runs]
         stats[key] = {
             "runs": len(runs),
             "verified": sum(1 for r in runs if verified(r)),
             "success": sum(1 for r in runs if verified(r)) / len(runs),
             "median_time": median([counted_time(r) for r in runs]),
+            # Only when every run has it: a median over some runs would mislead.
+            "median_solve": median(solves) if None not in solves else float("nan"),
             "solved_time": median([r.get("time") for r in solved]),
             "checking_share": median(shares),
             "state_checks": median([r.get("state_checks") for r in runs]),
@@ -126,6 +145,8 @@ def summarise(rows):
     for (config, planner, checker), s in stats.items():
         fcl = stats.get((config, planner, "fcl"))
         s["ratio"] = s["median_time"] / fcl["median_time"] if fcl and fcl["median_time"] > 0 else float("nan")
+        s["solve_ratio"] = (s["median_solve"] / fcl["median_solve"]
+                            if fcl and fcl["median_solve"] > 0 else float("nan"))
     return stats
 
 
@@ -144,15 +165,15 @@ def order(key):
 
 
 def markdown(stats):
-    lines = ["| config | planner | checker | runs | success | median time (s) | time / FCL | solved time (s) | "
-             "checking | state checks | motion checks | invalid | invalid raw |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| config | planner | checker | runs | success | median time (s) | time / FCL | median solve (s) | "
+             "solve / FCL | solved time (s) | checking | state checks | motion checks | invalid | invalid raw |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for key in sorted(stats, key=order):
         s = stats[key]
         share = "-" if math.isnan(s["checking_share"]) else "%.0f%%" % (100 * s["checking_share"])
-        lines.append("| %s | %s | %s | %d | %.0f%% | %s | %s | %s | %s | %s | %s | %d | %d |" % (
+        lines.append("| %s | %s | %s | %d | %.0f%% | %s | %s | %s | %s | %s | %s | %s | %s | %d | %d |" % (
             key[0], key[1], key[2], s["runs"], 100 * s["success"], fmt(s["median_time"]), fmt(s["ratio"], 2),
-            fmt(s["solved_time"]), share, fmt(s["state_checks"], 4), fmt(s["motion_checks"], 4), s["invalid"],
+            fmt(s["median_solve"]), fmt(s["solve_ratio"], 2), fmt(s["solved_time"]), share, fmt(s["state_checks"], 4), fmt(s["motion_checks"], 4), s["invalid"],
             s["invalid_raw"]))
     notes = []
     for key in sorted(stats, key=order):
@@ -179,8 +200,8 @@ def plot(rows, stats, out_dir):
         width = 0.8 / max(1, len(checkers))
         for ci, checker in enumerate(checkers):
             xs = [i + (ci - (len(checkers) - 1) / 2) * width for i in range(len(planners))]
-            times = [[r["time"] for r in rows if r["config"] == config and r["planner"] == p and
-                      r["checker"] == checker and r.get("time") is not None] or [float("nan")] for p in planners]
+            times = [[planner_time(r) for r in rows if r["config"] == config and r["planner"] == p and
+                      r["checker"] == checker and planner_time(r) is not None] or [float("nan")] for p in planners]
             box = axes[0][0].boxplot(times, positions=xs, widths=width * 0.9, patch_artist=True, showfliers=False)
             for patch in box["boxes"]:
                 patch.set_facecolor("C%d" % ci)
@@ -188,7 +209,7 @@ def plot(rows, stats, out_dir):
             axes[0][1].bar(xs, [100 * v for v in get("success")], width, color="C%d" % ci, label=checker)
             axes[1][0].bar(xs, get("motion_checks"), width, color="C%d" % ci)
             axes[1][1].bar(xs, get("invalid"), width, color="C%d" % ci)
-        titles = ["planning time of every run (s; valid, invalid or none)",
+        titles = ["planner's solve time of every run (s; valid, invalid or none)",
                   "success rate (%, verified solutions)", "motion checks (median)",
                   "invalid solutions (count)"]
         for ax, title in zip(axes.flat, titles):

@@ -187,7 +187,9 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
       // before OMPL's benchmark checks the solution with them.
       std::pair<std::uint64_t, double> solve_counts;
       std::uint64_t solve_motions = 0;
-      const auto on_solved = [&] {
+      double solve_seconds = 0.0;  // the planner's own solve(), see MeteredPlanner
+      const auto on_solved = [&](double seconds) {
+        solve_seconds = seconds;
         solve_counts = setup.counts();
         const auto& mv = setup.ss->getSpaceInformation()->getMotionValidator();
         solve_motions = mv->getValidMotionCount() + mv->getInvalidMotionCount();
@@ -199,12 +201,16 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
         const std::string where = p.files.request.string() + ": planner '" + name + "': ";
         bench.addPlanner(std::make_shared<MeteredPlanner>(planner, on_solved, where));
       }
-      bench.setPreRunEvent([&](const ob::PlannerPtr&) { setup.resetCounts(); });
+      bench.setPreRunEvent([&](const ob::PlannerPtr&) {
+        setup.resetCounts();
+        solve_seconds = 0.0;
+      });
       bench.setPostRunEvent([&](const ob::PlannerPtr& planner, ot::Benchmark::RunProperties& run) {
         run["run index INTEGER"] = std::to_string(bench.getStatus().activeRun);
         run["state checks INTEGER"] = std::to_string(solve_counts.first);
         run["motion checks INTEGER"] = std::to_string(solve_motions);
         run["checking time REAL"] = real(solve_counts.second);
+        run["solve time REAL"] = real(solve_seconds);
         const bool solved = setup.ss->haveSolutionPath();
         const bool exact = solved && !setup.ss->getProblemDefinition()->hasApproximateSolution();
         Verdict v;

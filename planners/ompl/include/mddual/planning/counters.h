@@ -18,7 +18,11 @@ struct CheckerCounts {
   std::uint64_t motion_checks = 0;  ///< checkMotion() calls (both overloads)
   std::uint64_t pair_queries = 0;   ///< narrow-phase queries on a (robot piece, world piece) pair
   std::uint64_t sub_edges = 0;      ///< rotating-edge sub-edges swept (MDD motion validator)
-  double seconds = 0.0;             ///< time inside the checker's methods, summed over threads (0 when timing is off)
+  /// Time inside the checker's methods, summed over threads (0 when timing is
+  /// off). A call made inside another checker's timed call (the state checks
+  /// of a motion validator) is the outer call's time only: the counts of
+  /// several checkers add up without counting a nested call twice.
+  double seconds = 0.0;
 };
 
 /// Thread-safe counters; the checkers own one each.
@@ -52,13 +56,15 @@ class CheckerCounters {
     nanoseconds_.store(0, std::memory_order_relaxed);
   }
 
-  /// Adds the time from construction to destruction to `counters`.
+  /// Adds the time from construction to destruction to `counters`, unless
+  /// another Timer is alive on this thread (the outer one counts it).
   class Timer {
    public:
-    explicit Timer(CheckerCounters& counters) : counters_(counters), on_(counters.timing()) {
+    explicit Timer(CheckerCounters& counters) : counters_(counters), on_(depth()++ == 0 && counters.timing()) {
       if (on_) start_ = std::chrono::steady_clock::now();
     }
     ~Timer() {
+      --depth();
       if (!on_) return;
       const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_);
       counters_.addNanoseconds(static_cast<std::uint64_t>(ns.count()));
@@ -67,6 +73,10 @@ class CheckerCounters {
     Timer& operator=(const Timer&) = delete;
 
    private:
+    static int& depth() {
+      thread_local int d = 0;
+      return d;
+    }
     CheckerCounters& counters_;
     bool on_;
     std::chrono::steady_clock::time_point start_;

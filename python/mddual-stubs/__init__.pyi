@@ -199,12 +199,15 @@ class ArmScene:
         other keys None).
         """
         ...
-    def check_edges(self, Q0: numpy.typing.ArrayLike, Q1: numpy.typing.ArrayLike, *, first_contact: bool = ..., threads: int = ...) -> tuple[bool, float] | tuple[numpy.typing.NDArray[numpy.bool_], numpy.typing.NDArray[numpy.float64]]:
+    def check_edges(self, Q0: numpy.typing.ArrayLike, Q1: numpy.typing.ArrayLike, *, first_contact: bool = ..., fraction_tolerance: float = ..., threads: int = ...) -> tuple[bool, float] | tuple[numpy.typing.NDArray[numpy.bool_], numpy.typing.NDArray[numpy.float64]]:
         """The certified motion check of each edge Q0[k] -> Q1[k] (straight lines in joint space;
         one of them may be a single configuration): returns (collides, fraction). collides is
         never False when some state of the edge collides. fraction: inf for a free edge; with
         first_contact, a lower bound of the first contact (every state before it keeps
-        contact_distance); without, NaN for a colliding edge.
+        contact_distance); without, NaN for a colliding edge. fraction_tolerance (in [0, 1], with
+        first_contact only): the fraction may lie up to this much below the first contact, for
+        less work on a colliding edge (OMPL's lastValid: the motion validator passes one discrete
+        step).
         """
         ...
     def forward_kinematics(self, q: numpy.typing.ArrayLike, links: Sequence[str | int] | None = ...) -> numpy.typing.NDArray[numpy.float64]:

@@ -50,7 +50,8 @@ struct ArmSceneHandle {
   FloatOrArray clearance(const ArrayLikeArg& q, int threads) const;
   /// The pair that makes one configuration collide, or None.
   ArmContactResult contact(const ArrayLikeArg& q) const;
-  EdgeResults checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact, int threads) const;
+  EdgeResults checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact, double fraction_tolerance,
+                         int threads) const;
 
  private:
   /// collides(Q) or clearance(Q): f(q) per configuration, a scalar for one.

@@ -104,10 +104,20 @@ ArmContactResult ArmSceneHandle::contact(const ArrayLikeArg& q) const {
 }
 
 EdgeResults ArmSceneHandle::checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact,
-                                       int threads) const {
-  const mp::EdgeQuery query = first_contact ? mp::EdgeQuery::kFirstContact : mp::EdgeQuery::kValidity;
+                                       double fraction_tolerance, int threads) const {
+  if (!(fraction_tolerance >= 0.0 && fraction_tolerance <= 1.0)) {
+    throw py::value_error("fraction_tolerance: expected a number in [0, 1], got " + py::repr(py::float_(fraction_tolerance)).cast<std::string>());
+  }
+  if (fraction_tolerance > 0.0 && !first_contact) {
+    throw py::value_error("fraction_tolerance: only with first_contact=True (without, a colliding edge has no fraction)");
+  }
+  // A tolerance asks for the motion validator's lastValid query: decided as
+  // kValidity, then a lower bound at most the tolerance below the first contact.
+  const mp::EdgeQuery query = !first_contact              ? mp::EdgeQuery::kValidity
+                              : fraction_tolerance > 0.0 ? mp::EdgeQuery::kLastValid
+                                                         : mp::EdgeQuery::kFirstContact;
   return edgeBatch(q0, q1, *model, threads, [&](const double* a, const double* b) {
-    const mp::ArmEdgeResult r = scene->checkEdge(a, b, query);
+    const mp::ArmEdgeResult r = scene->checkEdge(a, b, query, fraction_tolerance);
     // kValidity stops at any contact: its fraction bounds nothing.
     return std::make_pair(r.collides,
                           r.collides && !first_contact ? std::numeric_limits<double>::quiet_NaN() : r.fraction);
@@ -219,11 +229,14 @@ void bindArms(py::module_& m) {
            "For one configuration, the pair that collides: None when free, else a dict of link, other_link (a "
            "self-collision) or world_piece and world_piece_origin (a world contact; the other keys None).")
       .def("check_edges", &ArmSceneHandle::checkEdges, py::arg("Q0"), py::arg("Q1"), py::kw_only(),
-           py::arg("first_contact") = false, py::arg("threads") = 1,
+           py::arg("first_contact") = false, py::arg("fraction_tolerance") = 0.0, py::arg("threads") = 1,
            "The certified motion check of each edge Q0[k] -> Q1[k] (straight lines in joint space; one of them "
            "may be a single configuration): returns (collides, fraction). collides is never False when some "
            "state of the edge collides. fraction: inf for a free edge; with first_contact, a lower bound of the "
-           "first contact (every state before it keeps contact_distance); without, NaN for a colliding edge.")
+           "first contact (every state before it keeps contact_distance); without, NaN for a colliding edge. "
+           "fraction_tolerance (in [0, 1], with first_contact only): the fraction may lie up to this much below "
+           "the first contact, for less work on a colliding edge (OMPL's lastValid: the motion validator passes "
+           "one discrete step).")
       .def(
           "forward_kinematics",
           [](const ArmSceneHandle& s, const ArrayLikeArg& q, const LinksArg& links) -> FloatArray {

@@ -285,6 +285,14 @@ def test_check_edges_never_misses_a_dense_contact(problem_set):
     assert np.all(fraction[hit] <= dense[hit])
     assert np.all((fraction[collides] >= 0) & (fraction[collides] <= 1))
     assert np.all(np.isinf(fraction[~collides]))
+    # OMPL's lastValid query: the same decisions, a bound at most the
+    # tolerance below the first contact (so below kFirstContact's bound too).
+    tolerance = 0.05
+    last, last_fraction = scene.check_edges(Q0, Q1, first_contact=True, fraction_tolerance=tolerance, threads=2)
+    np.testing.assert_array_equal(last, collides)
+    assert np.all(np.isinf(last_fraction[~collides]))
+    assert np.all(last_fraction[hit] <= dense[hit])
+    assert np.all(last_fraction[collides] >= fraction[collides] - tolerance)
     # One start shared by every edge; a single edge gives scalars.
     shared, _ = scene.check_edges(Q0[0], Q1)
     assert shared[0] == collides[0]
@@ -309,6 +317,10 @@ def test_shape_and_value_errors(problem):
         scene.collides(Q)
     with pytest.raises(mddual.InvalidInputError, match=r"Q1\[2\]: variable 'joint5'"):
         scene.check_edges(problem.start, Q)
+    with pytest.raises(ValueError, match=r"fraction_tolerance: expected a number in \[0, 1\], got nan"):
+        scene.check_edges(problem.start, problem.start, first_contact=True, fraction_tolerance=math.nan)
+    with pytest.raises(ValueError, match="fraction_tolerance: only with first_contact=True"):
+        scene.check_edges(problem.start, problem.start, fraction_tolerance=0.1)
     with pytest.raises(ValueError, match="batch sizes differ: Q0 has 3 entries, Q1 has 2"):
         scene.check_edges(np.zeros((3, 8)), np.zeros((2, 8)))
     with pytest.raises(ValueError, match="q: expected one configuration, got a batch"):

@@ -8,7 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
+
+#include <unistd.h>
 
 #include "arm_fixture.h"
 #include "mddual/distance.h"
@@ -219,6 +223,40 @@ TEST(ArmScene, SelfCollisionEdgesAreCertified) {
     ASSERT_LE(dense, t_star + 1.0 / 2000);
     EXPECT_LE(first.fraction, dense) << "edge " << sampled;
   }
+}
+
+// Pinned: a ball on a link that swings past a ball on the base. At the first
+// probe (t = 0.5, half-width 0.5) the two bounding balls are 0.59 apart, and
+// the swinging one can close 0.5 * 2 rad * (1 + 0.05) = 1.05 before the ends:
+// the pair must be walked, not cleared by its bounding balls. (A bound under
+// 0.56 of the true one clears it and misses the contact at t = 0.1 .. 0.2.)
+TEST(ArmScene, SelfPairBallsClearOnlyWithinTheirMotionBound) {
+  const std::filesystem::path urdf =
+      std::filesystem::temp_directory_path() / ("mddual_arm_swing_" + std::to_string(::getpid()) + ".urdf");
+  const double theta_c = 0.3;  // where the base's ball sits on the swinging ball's circle
+  std::ofstream(urdf) << R"(<robot name="swing">
+    <link name="base"><collision><origin xyz=")"
+                      << std::cos(theta_c) << " " << std::sin(theta_c) << R"( 0"/>
+      <geometry><sphere radius="0.05"/></geometry></collision></link>
+    <link name="arm"><collision><origin xyz="1 0 0"/><geometry><sphere radius="0.05"/></geometry></collision></link>
+    <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+      <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>)";
+  auto model = std::make_shared<const scene::RobotModel>(scene::loadRobotModel(urdf));
+  std::filesystem::remove(urdf);
+  const ArmScene s(model, std::make_shared<const scene::World>(std::vector<scene::Piece>{}, "empty"),
+                   scene::AllowedCollisions(*model));
+  ASSERT_EQ(s.selfPairs().size(), 1u);
+  const std::vector<double> q0 = {0.0}, q1 = {2.0};
+  ASSERT_FALSE(s.collides(q0.data()));
+  ASSERT_FALSE(s.collides(q1.data()));
+  const double dense = denseFirstContact(s, q0, q1, 2000);
+  ASSERT_GT(dense, 0.09);
+  ASSERT_LT(dense, 0.15);  // the balls meet (centres 2 sin(|2t - 0.3| / 2) apart) before t = 0.15
+  EXPECT_TRUE(s.checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity).collides);
+  const ArmEdgeResult first = s.checkEdge(q0.data(), q1.data(), EdgeQuery::kFirstContact);
+  ASSERT_TRUE(first.collides);
+  EXPECT_LE(first.fraction, dense);
+  EXPECT_GT(first.fraction, 0.05) << "no state before t = 0.09 is within reach of a contact";
 }
 
 TEST(ArmScene, RejectsBadInput) {

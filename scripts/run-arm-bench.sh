@@ -56,7 +56,8 @@ command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_RUNS=$runs MDDUAL_ARM_LIMIT=$l
   echo "Checkers: mdd (certified arm edges), fcl (FCL states, OMPL's discrete validator at its default"
   echo "resolution), fcl-fine (the same at 1/32 rad), and hull-cast (FCL states, Bullet casts of each link"
   echo "piece's hull between states at OMPL's resolution) when built with Bullet. A run without a verified"
-  echo "solution counts at the limit."
+  echo "solution counts at the limit. \"median solve\" is the planner's own solve() time: OMPL's \"time\" also"
+  echo "holds up to 1 ms of its benchmark's termination-condition thread, the same for every checker."
   echo
 } > "$table"
 for s in "${sets[@]}"; do

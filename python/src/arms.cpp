@@ -106,14 +106,16 @@ ArmContactResult ArmSceneHandle::contact(const ArrayLikeArg& q) const {
 EdgeResults ArmSceneHandle::checkEdges(const ArrayLikeArg& q0, const ArrayLikeArg& q1, bool first_contact,
                                        double fraction_tolerance, int threads) const {
   if (!(fraction_tolerance >= 0.0 && fraction_tolerance <= 1.0)) {
-    throw py::value_error("fraction_tolerance: expected a number in [0, 1], got " + py::repr(py::float_(fraction_tolerance)).cast<std::string>());
+    throw py::value_error("fraction_tolerance: expected a number in [0, 1], got " +
+                          py::repr(py::float_(fraction_tolerance)).cast<std::string>());
   }
   if (fraction_tolerance > 0.0 && !first_contact) {
-    throw py::value_error("fraction_tolerance: only with first_contact=True (without, a colliding edge has no fraction)");
+    throw py::value_error(
+        "fraction_tolerance: only with first_contact=True (without, a colliding edge has no fraction)");
   }
   // A tolerance asks for the motion validator's lastValid query: decided as
   // kValidity, then a lower bound at most the tolerance below the first contact.
-  const mp::EdgeQuery query = !first_contact              ? mp::EdgeQuery::kValidity
+  const mp::EdgeQuery query = !first_contact             ? mp::EdgeQuery::kValidity
                               : fraction_tolerance > 0.0 ? mp::EdgeQuery::kLastValid
                                                          : mp::EdgeQuery::kFirstContact;
   return edgeBatch(q0, q1, *model, threads, [&](const double* a, const double* b) {

@@ -150,6 +150,15 @@ def summarise(rows):
     return stats
 
 
+def planning_time_fields(stats):
+    """The fields a table of planning times reads: the planner's own solve
+    time and its ratio to FCL's where every group has it, else OMPL's time
+    (databases of logs without `solve time`), with the column's label."""
+    if stats and all(not math.isnan(s["median_solve"]) for s in stats.values()):
+        return "median_solve", "solve_ratio", "median solve (s)"
+    return "median_time", "ratio", "median time (s)"
+
+
 def fmt(x, digits=3):
     if x is None or (isinstance(x, float) and math.isnan(x)):
         return "-"

@@ -3,11 +3,13 @@
 
 Reads out/bench-full/<config>/bench.db (made by scripts/run-full-bench.sh via
 `mddual bench`), summarises them with scripts/bench_report.py, and writes one
-compact table (per config and planner: success, median time and invalid
-solutions of each checker, MDD's time over FCL discrete's, and the MDD and
-FCL checkers' median time over the runs that returned a solution, valid or not), the
+compact table (per config and planner: success, median planning time and
+invalid solutions of each checker, MDD's time over FCL discrete's, and the MDD
+and FCL checkers' median time over the runs that returned a solution, valid or
+not), the
 targets with their verdicts as measured, and how often the two halves of the
-strict verification agreed. The text replaces what lies between the markers
+strict verification agreed. The planning time is the planner's own solve time
+(`median solve`, bench_report.py) when every database has it, else OMPL's. The text replaces what lies between the markers
 `<!-- results:begin -->` and `<!-- results:end -->` in docs/results/overview.md
 (--readme names another file; --readme - prints to standard output).
 
@@ -81,11 +83,12 @@ def gather(bench_dir):
 def headline(bench_dir, target, made_by):
     """The README's table: one row per config, the RRT-Connect runs of every checker."""
     configs, stats, runs_limit, _ = gather(bench_dir)
+    time_field, _, time_label = bench_report.planning_time_fields(stats)
     overview_page = os.path.join(ROOT, "docs", "results", "overview.md")
     link = (os.path.relpath(overview_page, os.path.dirname(os.path.abspath(target))) if target != "-"
             else "docs/results/overview.md")
-    lines = ["| config (runs x limit) | success mdd / fcl / fcl-cont | median time (s) mdd / fcl / fcl-cont "
-             "| invalid solutions mdd / fcl / fcl-cont |", "|---|---|---|---|"]
+    lines = ["| config (runs x limit) | success mdd / fcl / fcl-cont | %s mdd / fcl / fcl-cont "
+             "| invalid solutions mdd / fcl / fcl-cont |" % time_label, "|---|---|---|---|"]
     for c in configs:
         p = HEADLINE_PLANNER
         if not any((c, p, k) in stats for k in CHECKERS):
@@ -93,7 +96,7 @@ def headline(bench_dir, target, made_by):
         lines.append("| %s, %s, %d x %g s | %s | %s | %s |" % (
             c, SPACES.get(c, "?"), runs_limit[c][0], runs_limit[c][1],
             triple(stats, c, p, lambda s: "%.0f%%" % (100 * s["success"])),
-            triple(stats, c, p, lambda s: bench_report.fmt(s["median_time"])),
+            triple(stats, c, p, lambda s: bench_report.fmt(s[time_field])),
             triple(stats, c, p, lambda s: str(s["invalid"]))))
     text = ["Made by `scripts/results_overview.py --headline` from the databases of `%s`: the RRT-Connect "
             "rows of [docs/results/overview.md](%s), which has the other planners." % (made_by, link), ""]
@@ -102,8 +105,10 @@ def headline(bench_dir, target, made_by):
 
 def overview(bench_dir):
     configs, stats, runs_limit, agree = gather(bench_dir)
-    lines = ["| config (runs x limit) | planner | success mdd / fcl / fcl-cont | median time (s) mdd / fcl / fcl-cont "
-             "| mdd / FCL | solved time (s) mdd / fcl | invalid mdd / fcl / fcl-cont |", "|---|---|---|---|---|---|---|"]
+    time_field, ratio_field, time_label = bench_report.planning_time_fields(stats)
+    lines = ["| config (runs x limit) | planner | success mdd / fcl / fcl-cont | %s mdd / fcl / fcl-cont "
+             "| mdd / FCL | solved time (s) mdd / fcl | invalid mdd / fcl / fcl-cont |" % time_label,
+             "|---|---|---|---|---|---|---|"]
     verdicts, mdd_invalid, thin_fcl_invalid = [], 0, 0
     for c in configs:
         planners = sorted({k[1] for k in stats if k[0] == c})
@@ -113,8 +118,8 @@ def overview(bench_dir):
             lines.append("| %s%s, %d x %gs | %s | %s | %s | %s | %s | %s |" % (
                 c, space, runs_limit[c][0], runs_limit[c][1], p,
                 triple(stats, c, p, lambda s: "%.0f%%" % (100 * s["success"])),
-                triple(stats, c, p, lambda s: bench_report.fmt(s["median_time"])),
-                bench_report.fmt(mdd["ratio"], 2) if mdd else "-",
+                triple(stats, c, p, lambda s: bench_report.fmt(s[time_field])),
+                bench_report.fmt(mdd[ratio_field], 2) if mdd else "-",
                 " / ".join(bench_report.fmt(x["solved_time"]) if x else "-" for x in (mdd, fcl)),
                 triple(stats, c, p, lambda s: str(s["invalid"]))))
             if mdd:
@@ -122,18 +127,18 @@ def overview(bench_dir):
             if c == "thin_walls" and fcl:
                 thin_fcl_invalid += fcl["invalid"]
             if translation_only(c) and mdd and fcl:
-                met = mdd["ratio"] <= 0.5 and mdd["success"] >= fcl["success"]
+                met = mdd[ratio_field] <= 0.5 and mdd["success"] >= fcl["success"]
                 verdicts.append("%s %s: MDD median %s s vs FCL %s s (ratio %s), success %.0f%% vs %.0f%%: %s" % (
-                    c, p, bench_report.fmt(mdd["median_time"]), bench_report.fmt(fcl["median_time"]),
-                    bench_report.fmt(mdd["ratio"], 2), 100 * mdd["success"], 100 * fcl["success"],
+                    c, p, bench_report.fmt(mdd[time_field]), bench_report.fmt(fcl[time_field]),
+                    bench_report.fmt(mdd[ratio_field], 2), 100 * mdd["success"], 100 * fcl["success"],
                     "met" if met else "missed"))
     text = ["Made by `scripts/results_overview.py` from the databases of `scripts/run-full-bench.sh` "
             "(per-config tables, commands and plots: docs/results/README.md).", ""]
     text += lines + [""]
     text.append("Targets as measured:")
     text.append("")
-    text.append("- translation-only configs, MDD's median time at most half of FCL discrete's at the same or "
-                "better success:")
+    text.append("- translation-only configs, MDD's %s at most half of FCL discrete's at the same or "
+                "better success:" % time_label.replace(" (s)", ""))
     text += ["  - " + v for v in verdicts]
     text.append("- zero invalid solutions from the MDD checker on every config: %d invalid (%s)"
                 % (mdd_invalid, "met" if mdd_invalid == 0 else "missed"))

@@ -68,9 +68,9 @@ def read_page(path):
 def headline(pages, planner):
     checkers = [c for c in CHECKERS if any(r["checker"] == c for _, _, rows in pages for r in rows)]
     joined = " / ".join(checkers)
-    # The planner's own solve time when every page has it (OMPL's time adds
-    # its harness's thread stop to every run; bench_report.py).
-    every = all("median solve (s)" in r for _, _, rows in pages for r in rows)
+    # The planner's own solve time when every row has it (OMPL's time adds
+    # its harness's thread stop to every run; bench_report.py), else OMPL's.
+    every = all(r.get("median solve (s)", "-") != "-" for _, _, rows in pages for r in rows)
     time = "median solve (s)" if every else "median time (s)"
     lines = ["| robot, set | success %s | %s %s | invalid solutions %s |" % (joined, time, joined, joined),
              "|---|---|---|---|"]

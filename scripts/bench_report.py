@@ -25,8 +25,10 @@ Per config, planner and checker:
                   the checker, which hides the checker's share on runs of a
                   millisecond ("-" for logs without the property);
   solve / FCL     that median over the same planner's with the `fcl` checker;
-  solved time     median planning time of the runs that returned an exact
-                  solution, valid or not ("-" if none): the planner's raw speed;
+  solved time     median planning time (the planner's solve time where the
+                  logs have it, else OMPL's) of the runs that returned an
+                  exact solution, valid or not ("-" if none): the planner's
+                  raw speed;
   checking        median share of the planner's solve time (OMPL's time for
                   logs without `solve time`) spent in the checkers (run
                   property `checking time`);
@@ -105,10 +107,10 @@ def verified(r):
 
 def counted_time(r, field="time"):
     """Planning time (OMPL's `time`, or `solve_time`) of a run with a verified
-    solution, else the time limit; None when the run has no such field."""
-    if r.get(field) is None:
-        return None
-    return r[field] if verified(r) else r["timelimit"]
+    solution, else the time limit; None for a verified run without the field."""
+    if not verified(r):
+        return r["timelimit"]
+    return r.get(field)
 
 
 def planner_time(r):
@@ -133,7 +135,7 @@ def summarise(rows):
             "median_time": median([counted_time(r) for r in runs]),
             # Only when every run has it: a median over some runs would mislead.
             "median_solve": median(solves) if None not in solves else float("nan"),
-            "solved_time": median([r.get("time") for r in solved]),
+            "solved_time": median([planner_time(r) for r in solved]),
             "checking_share": median(shares),
             "state_checks": median([r.get("state_checks") for r in runs]),
             "motion_checks": median([r.get("motion_checks") for r in runs]),

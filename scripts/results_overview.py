@@ -32,7 +32,8 @@ import readme_markers  # noqa: E402
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 CONFIGS = ["thin_walls", "convex_field", "narrow_passage", "maze_se2", "cubicles"]
-CHECKERS = ["mdd", "fcl", "fcl-continuous"]
+CHECKERS = ["mdd", "fcl", "fcl-continuous", "hull-cast"]
+SHORT = {"fcl-continuous": "fcl-cont"}
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 HEADLINE_BEGIN, HEADLINE_END = "<!-- headline:begin -->", "<!-- headline:end -->"
 HEADLINE_PLANNER = "rrtconnect"
@@ -58,8 +59,19 @@ def agreement(db_path):
     return tuple(int(x or 0) for x in row)
 
 
+def present(stats):
+    """The checkers of CHECKERS that ran (hull-cast only in builds with Bullet)."""
+    return [c for c in CHECKERS if any(k[2] == c for k in stats)]
+
+
+def names(stats):
+    return " / ".join(SHORT.get(c, c) for c in present(stats))
+
+
 def triple(stats, config, planner, fn):
-    return " / ".join(fn(stats[(config, planner, c)]) if (config, planner, c) in stats else "-" for c in CHECKERS)
+    """One cell: fn of each present checker's group, "-" where it has none."""
+    return " / ".join(fn(stats[(config, planner, c)]) if (config, planner, c) in stats else "-"
+                      for c in present(stats))
 
 
 def gather(bench_dir):
@@ -87,8 +99,9 @@ def headline(bench_dir, target, made_by):
     overview_page = os.path.join(ROOT, "docs", "results", "overview.md")
     link = (os.path.relpath(overview_page, os.path.dirname(os.path.abspath(target))) if target != "-"
             else "docs/results/overview.md")
-    lines = ["| config (runs x limit) | success mdd / fcl / fcl-cont | %s mdd / fcl / fcl-cont "
-             "| invalid solutions mdd / fcl / fcl-cont |" % time_label, "|---|---|---|---|"]
+    n = names(stats)
+    lines = ["| config (runs x limit) | success %s | %s %s | invalid solutions %s |" % (n, time_label, n, n),
+             "|---|---|---|---|"]
     for c in configs:
         p = HEADLINE_PLANNER
         if not any((c, p, k) in stats for k in CHECKERS):
@@ -106,9 +119,9 @@ def headline(bench_dir, target, made_by):
 def overview(bench_dir):
     configs, stats, runs_limit, agree = gather(bench_dir)
     time_field, ratio_field, time_label = bench_report.planning_time_fields(stats)
-    lines = ["| config (runs x limit) | planner | success mdd / fcl / fcl-cont | %s mdd / fcl / fcl-cont "
-             "| mdd / FCL | solved time (s) mdd / fcl | invalid mdd / fcl / fcl-cont |" % time_label,
-             "|---|---|---|---|---|---|---|"]
+    n = names(stats)
+    lines = ["| config (runs x limit) | planner | success %s | %s %s | mdd / FCL | solved time (s) mdd / fcl "
+             "| invalid %s |" % (n, time_label, n, n), "|---|---|---|---|---|---|---|"]
     verdicts, mdd_invalid, thin_fcl_invalid = [], 0, 0
     for c in configs:
         planners = sorted({k[1] for k in stats if k[0] == c})

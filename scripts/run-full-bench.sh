@@ -73,8 +73,8 @@ cpu=$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')
   echo "collision-free; median time over all runs, runs without a verified solution counted at the time limit;"
   echo "time / FCL = that median over the fcl checker's (FCL + OMPL's discrete motion validator at the default"
   echo "resolution); median solve, solve / FCL = the same over the planner's own solve() time (OMPL's time"
-  echo "also holds up to 1 ms of its benchmark's termination-condition thread); solved time = median time of"
-  echo "the runs that returned an exact solution, valid or not; checking = median share of the solve time"
+  echo "also holds up to 1 ms of its benchmark's termination-condition thread); solved time = median solve time"
+  echo "of the runs that returned an exact solution, valid or not; checking = median share of the solve time"
   echo "spent in the checkers; invalid = solutions in collision;"
   echo "invalid raw = solutions whose path was already in collision before OMPL's simplification."
   for c in "${configs[@]}"; do

@@ -293,6 +293,9 @@ def test_check_edges_never_misses_a_dense_contact(problem_set):
     assert np.all(np.isinf(last_fraction[~collides]))
     assert np.all(last_fraction[hit] <= dense[hit])
     assert np.all(last_fraction[collides] >= fraction[collides] - tolerance)
+    # Not vacuous: enough first contacts lie beyond the tolerance that a
+    # bound of 0 (or any bound too low by more than it) fails above.
+    assert np.sum(fraction[collides] > 2 * tolerance) >= 10
     # One start shared by every edge; a single edge gives scalars.
     shared, _ = scene.check_edges(Q0[0], Q1)
     assert shared[0] == collides[0]

@@ -81,6 +81,14 @@ class ArmHeadline(unittest.TestCase):
             text = f.read()
         self.assertIn("| robot, set | success mdd | median time (s) mdd | invalid solutions mdd |", text)
         self.assertIn("| arm7, cage | 100% | 0.07 | 0 |\n| panda, box | 100% | 0.5 | 0 |", text)
+        # A new table from old logs: the column is there, its cells "-".
+        dashed = page("panda", [("box", "RRTConnectkConfigDefault", "mdd", "100%", "0.5", "0")])
+        dashed = dashed.replace("| 0.05 |", "| - |")
+        result = self.run_script([new, dashed])
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(self.readme) as f:
+            text = f.read()
+        self.assertIn("| arm7, cage | 100% | 0.07 | 0 |\n| panda, box | 100% | 0.5 | 0 |", text)
 
     def test_refuses_bad_pages_and_an_unknown_planner(self):
         result = self.run_script(["# something else\n"])

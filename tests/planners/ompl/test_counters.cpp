@@ -69,6 +69,16 @@ TEST(CheckerCounters, TimingOffCountsNoTime) {
     busy(std::chrono::microseconds(100));
   }
   EXPECT_GE(c.read().seconds, 100e-6);
+  // Inside a call that is not timed, a timed one counts its own time.
+  CheckerCounters outer_off, inner_on;
+  outer_off.setTiming(false);
+  {
+    const CheckerCounters::Timer outer(outer_off);
+    const CheckerCounters::Timer inner(inner_on);
+    busy(std::chrono::microseconds(100));
+  }
+  EXPECT_EQ(outer_off.read().seconds, 0.0);
+  EXPECT_GE(inner_on.read().seconds, 100e-6);
 }
 
 }  // namespace

@@ -57,14 +57,16 @@ class CheckerCounters {
   }
 
   /// Adds the time from construction to destruction to `counters`, unless
-  /// another Timer is alive on this thread (the outer one counts it).
+  /// another timing Timer is alive on this thread (the outer one counts it).
+  /// A scope: constructed and destroyed on the same thread.
   class Timer {
    public:
-    explicit Timer(CheckerCounters& counters) : counters_(counters), on_(depth()++ == 0 && counters.timing()) {
+    explicit Timer(CheckerCounters& counters)
+        : counters_(counters), depth_(counters.timing() ? depth()++ : -1), on_(depth_ == 0) {
       if (on_) start_ = std::chrono::steady_clock::now();
     }
     ~Timer() {
-      --depth();
+      if (depth_ >= 0) --depth();
       if (!on_) return;
       const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_);
       counters_.addNanoseconds(static_cast<std::uint64_t>(ns.count()));
@@ -78,6 +80,7 @@ class CheckerCounters {
       return d;
     }
     CheckerCounters& counters_;
+    int depth_;  ///< timing Timers alive on this thread before this one (-1: timing off)
     bool on_;
     std::chrono::steady_clock::time_point start_;
   };

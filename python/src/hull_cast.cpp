@@ -106,12 +106,10 @@ class HullCast {
       bool* c = collides.mutable_data();
       double* f = fraction.mutable_data();
       py::gil_scoped_release release;
-      StateHolder a(space_->stateSpace()), b(space_->stateSpace()), last(space_->stateSpace());
-      for (std::size_t k = 0; k < n; ++k) {
-        a.set(s1.row(k, dim_), dim_, itemName("starts", k, s1.batched));
-        b.set(s2.row(k, dim_), dim_, itemName("ends", k, s2.batched));
-        std::tie(c[k], f[k]) = checkOne(v, a.get(), b.get(), last.get());
-      }
+      StateHolder last(space_->stateSpace());
+      forEachEdge(space_->stateSpace(), dim_, s1, s2, n, [&](std::size_t k, const ob::State* a, const ob::State* b) {
+        std::tie(c[k], f[k]) = checkOne(v, a, b, last.get());
+      });
     }
     py::dict out;
     out["collides"] = collides;

@@ -194,17 +194,13 @@ ArrayDict Scene::checkEdges(const ArrayLikeArg& starts, const ArrayLikeArg& ends
     double* f = fraction.mutable_data();
     bool* e = exact.mutable_data();
     py::gil_scoped_release release;
-    StateHolder a(space_->stateSpace());
-    StateHolder b(space_->stateSpace());
-    for (std::size_t k = 0; k < n; ++k) {
-      a.set(s1.row(k, dim_), dim_, itemName("starts", k, s1.batched));
-      b.set(s2.row(k, dim_), dim_, itemName("ends", k, s2.batched));
-      const mp::EdgeContact r = mp::edgeContact(*scene_, *space_, a.get(), b.get());
+    forEachEdge(space_->stateSpace(), dim_, s1, s2, n, [&](std::size_t k, const ob::State* a, const ob::State* b) {
+      const mp::EdgeContact r = mp::edgeContact(*scene_, *space_, a, b);
       c[k] = r.collides;
       sc[k] = r.start_collides;
       f[k] = r.fraction;
       e[k] = r.exact;
-    }
+    });
   }
   py::dict out;
   out["collides"] = collides;

@@ -1,7 +1,7 @@
 // mddual.Scene's C++ class, shared by scene.cpp (its bindings) and
 // hull_cast.cpp (the Bullet peer's, which checks a Scene's edges): a loaded
 // problem with its planning space and exact checks (MddScene), and OMPL
-// states made from rows of numbers (StateHolder).
+// states made from rows of numbers (StateHolder, forEachEdge).
 #pragma once
 
 #include <pybind11/numpy.h>
@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "convert.h"
 #include "mddual/planning/mdd_scene.h"
 #include "mddual/planning/problem_setup.h"
 #include "mddual/planning/state_space.h"
@@ -38,6 +39,21 @@ class StateHolder {
   ompl::base::StateSpacePtr space_;
   ompl::base::State* state_;
 };
+
+/// Calls f(k, s1, s2) for the n edges of two batches of states (one side may
+/// be a single state that every edge shares), each state set from its row
+/// (StateHolder::set's errors name `starts[k]` or `ends[k]`). Runs where it
+/// is called (the callers release the GIL around it).
+template <class F>
+void forEachEdge(const ompl::base::StateSpacePtr& space, int dim, const StateBatch& starts, const StateBatch& ends,
+                 std::size_t n, const F& f) {
+  StateHolder a(space), b(space);
+  for (std::size_t k = 0; k < n; ++k) {
+    a.set(starts.row(k, dim), dim, itemName("starts", k, starts.batched));
+    b.set(ends.row(k, dim), dim, itemName("ends", k, ends.batched));
+    f(k, a.get(), b.get());
+  }
+}
 
 /// mddual.Scene: a problem (robot, world, space, start and goal) with its
 /// planning space and the exact checks. Its const methods are thread-safe.

@@ -6,8 +6,8 @@ docs/results/panda.md (the Panda), keeps the rows of one planner
 (RRTConnectkConfigDefault unless --planner says otherwise) and writes one
 line per (robot, problem set): success, median planning time (the planner's
 own solve time, `median solve (s)`, where the page has it, else OMPL's
-`median time (s)`) and invalid solutions for each checker, between the markers `<!-- arms:begin -->` and
-`<!-- arms:end -->` of README.md (--readme names another file; --readme -
+`median time (s)`) and invalid solutions for each checker, between the
+markers `<!-- arms:begin -->` and `<!-- arms:end -->` of README.md (--readme names another file; --readme -
 prints to standard output). A page that is missing is skipped; none at all
 is an error.
 

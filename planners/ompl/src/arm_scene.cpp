@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "constants.h"
 #include "mddual/distance.h"
@@ -48,6 +49,50 @@ constexpr int kClusterPieces = 24;
 int clusterSize(int level, int n) {
   return level == 0 ? (n + 1) / 2 : kClusterPieces;
 }
+
+/// Configurations this thread recently found free (a state check, or the
+/// ends of an edge certified free), per scene. checkEdge skips its end-state
+/// check for them: the goal trees of RRT-Connect and BKPIECE check edges that
+/// end at a tree state, found free before. A hint only: the search covers the
+/// whole edge whatever the memo says, so a wrong entry costs a state check
+/// and never a miss. Direct-mapped on the exact values of the variables.
+class FreeMemo {
+ public:
+  bool contains(std::uint64_t scene, const double* q, int n) const {
+    const Slot& s = slots_[index(q, n)];
+    return s.scene == scene && std::equal(s.q.begin(), s.q.end(), q, q + n);
+  }
+  void insert(std::uint64_t scene, const double* q, int n) {
+    Slot& s = slots_[index(q, n)];
+    s.scene = scene;
+    s.q.assign(q, q + n);
+  }
+
+ private:
+  static constexpr std::size_t kSlots = 1024;
+  struct Slot {
+    std::uint64_t scene = 0;  ///< 0: empty (scene serials start at 1)
+    std::vector<double> q;
+  };
+  static std::size_t index(const double* q, int n) {
+    std::uint64_t h = 0x9E3779B97F4A7C15ull;
+    for (int v = 0; v < n; ++v) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &q[v], sizeof bits);
+      h = (h ^ bits) * 0xBF58476D1CE4E5B9ull;
+      h ^= h >> 31;
+    }
+    return static_cast<std::size_t>(h % kSlots);
+  }
+  std::vector<Slot> slots_ = std::vector<Slot>(kSlots);
+};
+
+FreeMemo& freeMemo() {
+  thread_local FreeMemo memo;
+  return memo;
+}
+
+std::atomic<std::uint64_t> g_next_serial{1};
 
 }  // namespace
 
@@ -220,7 +265,12 @@ struct ArmScene::EdgeWork {
 
 ArmScene::ArmScene(std::shared_ptr<const scene::RobotModel> model, std::shared_ptr<const scene::World> world,
                    scene::AllowedCollisions filter, const Eigen::Isometry3d& X_WB, const ArmSceneOptions& options)
-    : model_(std::move(model)), world_(std::move(world)), filter_(std::move(filter)), X_WB_(X_WB), options_(options) {
+    : model_(std::move(model)),
+      world_(std::move(world)),
+      filter_(std::move(filter)),
+      X_WB_(X_WB),
+      options_(options),
+      serial_(g_next_serial.fetch_add(1, std::memory_order_relaxed)) {
   if (!model_) throw InvalidInputError("ArmScene: null robot model");
   if (!world_) throw InvalidInputError("ArmScene: null world");
   if (filter_.numLinks() != model_->numLinks()) {
@@ -411,6 +461,7 @@ bool ArmScene::collides(const double* q, ArmContact* which) const {
   for (const Pair& p : pairs_) {
     if (pairCollides(p, X_WL, which)) return true;
   }
+  if (options_.remember_free_states) freeMemo().insert(serial_, q, model_->numVariables());
   return false;
 }
 
@@ -638,17 +689,21 @@ ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery 
     //     quarters) cost more than they save before the search, which probes
     //     the middle first anyway (mddual_bench_arm_edges, bookshelf_thin and
     //     cage: 3% to 7% more instructions with the middle).
-    w.poseAt(*this, 1.0);
-    ArmContact which;
-    forEachPair([&](int p) {
-      if (!pairCollides(pairs_[static_cast<std::size_t>(p)], w.at->X_WL, &which)) return true;
-      last_contact_.store(p, std::memory_order_relaxed);
-      result.collides = true;
-      result.fraction = 1.0;
-      result.state_collides = true;
-      result.contact = which;
-      return false;
-    });
+    //     Skipped for an end state known free (FreeMemo).
+    if (!(options_.remember_free_states && freeMemo().contains(serial_, q1, nv))) {
+      w.poseAt(*this, 1.0);
+      result.end_state_checked = true;
+      ArmContact which;
+      forEachPair([&](int p) {
+        if (!pairCollides(pairs_[static_cast<std::size_t>(p)], w.at->X_WL, &which)) return true;
+        last_contact_.store(p, std::memory_order_relaxed);
+        result.collides = true;
+        result.fraction = 1.0;
+        result.state_collides = true;
+        result.contact = which;
+        return false;
+      });
+    }
     // 1b. Pair by pair, until a contact.
     if (!result.collides) {
       forEachPair([&](int p) {
@@ -659,6 +714,10 @@ ArmEdgeResult ArmScene::checkEdge(const double* q0, const double* q1, EdgeQuery 
         w.cleared[static_cast<std::size_t>(p)] = 1;  // clear on all of [0, 1]
         return true;
       });
+    }
+    if (!result.collides && options_.remember_free_states) {
+      freeMemo().insert(serial_, q0, nv);
+      freeMemo().insert(serial_, q1, nv);
     }
     if (query == EdgeQuery::kValidity || !result.collides) return result;
     // kLastValid on a colliding edge: the contact found bounds the search.

@@ -261,6 +261,52 @@ TEST(ArmScene, SelfPairBallsClearOnlyWithinTheirMotionBound) {
   EXPECT_GT(first.fraction, 0.05);
 }
 
+// The memo of free configurations (ArmSceneOptions::remember_free_states):
+// an end state found free skips the edge's end-state check in the same
+// scene only; another scene, where that state collides, still reports the
+// contact at the end (fraction 1, a colliding state).
+TEST(ArmScene, RemembersFreeEndStatesPerScene) {
+  const ArmFixture f = makeArm();
+  const scene::RobotModel& m = *f.model;
+  Rng rng(testing::seed() + 5);
+  const auto empty = std::make_shared<const scene::World>(std::vector<scene::Piece>{}, "empty");
+  const scene::AllowedCollisions filter = f.scene->filter();
+  ArmSceneOptions cold;
+  cold.remember_free_states = false;
+  const ArmScene open(f.model, empty, filter), open_cold(f.model, empty, filter, Eigen::Isometry3d::Identity(), cold);
+  int sampled = 0, tried = 0;
+  while (sampled < 10) {
+    ASSERT_LT(++tried, 1000) << "too few free edges";
+    const std::vector<double> q0 = randomConfiguration(m, rng), q1 = randomConfiguration(m, rng);
+    if (open.collides(q0.data()) || open.collides(q1.data())) continue;
+    // A box around the hand's first vertex at q1: q1 collides there only.
+    std::vector<Eigen::Isometry3d> X_WL;
+    m.linkPoses(q1.data(), &X_WL);
+    const int hand = m.linkIndex("hand");
+    const Eigen::Vector3d p_W =
+        X_WL[static_cast<std::size_t>(hand)] * m.link(hand).pieces.front().polytope.vertices().front();
+    std::vector<scene::Piece> box{
+        scene::boxPiece(Eigen::Vector3d::Constant(0.01), Eigen::Isometry3d(Eigen::Translation3d(p_W)), "box")};
+    const ArmScene boxed(f.model, std::make_shared<const scene::World>(std::move(box), "box"), filter);
+    if (boxed.collides(q0.data())) continue;
+    ASSERT_TRUE(boxed.collides(q1.data()));
+    ++sampled;
+    // Known free in `open` (its state check just before): not checked again.
+    ASSERT_FALSE(open.collides(q1.data()));
+    const ArmEdgeResult warm = open.checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity);
+    const ArmEdgeResult cold_result = open_cold.checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity);
+    EXPECT_FALSE(warm.end_state_checked);
+    EXPECT_TRUE(cold_result.end_state_checked);
+    EXPECT_EQ(warm.collides, cold_result.collides) << "edge " << sampled;
+    // Another scene: the end state is checked and collides.
+    const ArmEdgeResult hit = boxed.checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity);
+    EXPECT_TRUE(hit.end_state_checked);
+    ASSERT_TRUE(hit.collides);
+    EXPECT_EQ(hit.fraction, 1.0) << "edge " << sampled;
+    EXPECT_TRUE(hit.state_collides);
+  }
+}
+
 TEST(ArmScene, RejectsBadInput) {
   const ArmFixture f = makeArm();
   EXPECT_THROW(ArmScene(nullptr, armWorld(), scene::AllowedCollisions()), InvalidInputError);

@@ -30,6 +30,7 @@
 
 #include <Eigen/Geometry>
 #include <atomic>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -56,6 +57,12 @@ struct ArmSceneOptions {
   /// Halvings of the edge after which an unresolved interval counts as a
   /// contact (a false alarm bound, never a miss).
   int max_depth = 40;
+  /// Remember, per thread, the configurations found free (state checks and
+  /// the ends of edges certified free), and skip checkEdge's end-state check
+  /// for them: OMPL's bidirectional planners check many edges that end at a
+  /// tree state. The search still covers the whole edge, so this changes
+  /// the work, never the answer. Off to time cold motion checks.
+  bool remember_free_states = true;
 };
 
 /// The pair of a contact: a link and either a world piece or another link.
@@ -75,6 +82,9 @@ struct ArmEdgeResult {
   /// contact_distance, or an interval left unresolved at max_depth).
   bool state_collides = false;
   ArmContact contact;
+  /// The end state was checked on its own first (kValidity and kLastValid,
+  /// unless ArmSceneOptions::remember_free_states knew it free).
+  bool end_state_checked = false;
   int distance_queries = 0;  ///< pair bound queries (one link or link pair at one time)
   int intervals = 0;         ///< time intervals visited
 };
@@ -211,6 +221,9 @@ class ArmScene {
   /// The clearance the search proves: the contact distance plus the
   /// round-off slack of the motion bounds.
   double search_distance_ = 0.0;
+  /// Unique per scene constructed: keys the per-thread memo of free
+  /// configurations (arm_scene.cpp).
+  std::uint64_t serial_ = 0;
   /// The pair of the last contact a validity check found: checked first
   /// next time (a hint only; any thread may overwrite it).
   mutable std::atomic<int> last_contact_{-1};

@@ -4,9 +4,11 @@
 // in every joint, 1e-3 by default): no colliding edge called free, and the
 // first-contact bound (OMPL's lastValid) never after the first colliding
 // sample. Edges: random pairs of configurations, short steps from the
-// problem's start toward random configurations, and edges from the start to
-// the goal and to configurations near it. False alarms (edges refused that
-// the dense check passes) are counted and printed, not asserted.
+// problem's start toward random configurations, edges from the start to the
+// goal and to configurations near it, and near-contact edges: random edges
+// cut one dense step before or after their first contact. False alarms
+// (edges refused that the dense check passes) are counted and printed, not
+// asserted.
 //
 // The CI sample: 24 edges per set, on its first 2 problems (arm7's and the
 // Panda's sets). The full sweep (docs/testing.md): MDDUAL_PLANNING_SCALE=420
@@ -78,7 +80,7 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
   const std::size_t problems = scale == 1 ? std::min<std::size_t>(2, files.size()) : files.size();
   const int per_problem = static_cast<int>(24 * static_cast<std::size_t>(scale) / problems);
   std::mt19937_64 rng(seed);
-  int edges = 0, colliding = 0, free_edges = 0, false_alarms = 0;
+  int edges = 0, colliding = 0, free_edges = 0, false_alarms = 0, near_contact = 0;
   for (std::size_t k = 0; k < problems; ++k) {
     const ArmProblem p = loadArmProblem(robot, files[k]);
     const FclArmScene fcl(p.scene);
@@ -93,7 +95,7 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
     };
     for (int e = 0; e < per_problem; ++e) {
       std::vector<double> q0, q1;
-      switch (e % 4) {
+      switch (e % 6) {
         case 0:  // random pair
           q0 = randomQ();
           q1 = randomQ();
@@ -109,10 +111,26 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
           q0 = p.start;
           q1 = e == 2 ? p.goal : randomQ();
           break;
-        default: {  // toward the goal region from a random configuration
+        case 3: {  // toward the goal region from a random configuration
           q1 = p.goal;
           q0 = randomQ();
           for (int v : group) q0[std::size_t(v)] = q1[std::size_t(v)] + 0.3 * (q0[std::size_t(v)] - q1[std::size_t(v)]);
+          break;
+        }
+        default: {  // near a contact: a random edge cut one dense step before (4) or after (5) its first
+          // A free q0 and an edge from it that meets a contact (a few tries).
+          double t = 0.0;
+          for (int tries = 0; tries < 50 && !(t > 0.0 && t < 1.0); ++tries) {
+            q0 = randomQ();
+            q1 = randomQ();
+            t = fcl.collides(q0.data()) ? 0.0 : denseFcl(fcl, q0, q1, step);
+          }
+          if (!(t > 0.0 && t < 1.0)) break;  // kept as a random pair
+          ++near_contact;
+          double largest = 0.0;
+          for (int v : group) largest = std::max(largest, std::abs(q1[std::size_t(v)] - q0[std::size_t(v)]));
+          const double cut = e % 6 == 4 ? std::max(0.0, t - step / largest) : std::min(1.0, t + step / largest);
+          for (int v : group) q1[std::size_t(v)] = q0[std::size_t(v)] + cut * (q1[std::size_t(v)] - q0[std::size_t(v)]);
         }
       }
       ++edges;
@@ -132,8 +150,9 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
   }
   EXPECT_GE(colliding, edges / 10) << "too few colliding edges to test the check";
   EXPECT_GE(free_edges, edges / 10) << "too few free edges to test the check";
-  std::printf("%s/%s: %d edges, %d colliding, %d free, %d false alarms (dense step %g rad)\n", arm.robot.c_str(),
-              arm.set.c_str(), edges, colliding, free_edges, false_alarms, step);
+  EXPECT_GE(near_contact, edges / 4) << "too few near-contact edges (a third of them expected)";
+  std::printf("%s/%s: %d edges (%d near a contact), %d colliding, %d free, %d false alarms (dense step %g rad)\n",
+              arm.robot.c_str(), arm.set.c_str(), edges, near_contact, colliding, free_edges, false_alarms, step);
 }
 
 std::vector<ArmSet> armSets() {

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
+#include "mddual/constants.h"
 #include "mddual/scene/mbm_problem.h"
 #include "scene_test_util.h"
 
@@ -121,6 +123,66 @@ TEST(MbmProblem, ReadsASceneAsMotionBenchMakerWritesIt) {
   EXPECT_TRUE(scene.links_allowed_with_world.empty());
   ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_NE(scene.warnings[0].find("link 'base' is allowed to touch some objects only"), std::string::npos);
+}
+
+// A cone ([height, radius], along z, centred on its pose) is circumscribed
+// as the cylinders are: every point of the true cone is inside the polytope,
+// and every vertex within the primitive tolerance of the true cone.
+TEST(MbmProblem, ConeContainsTheTrueConeWithinTolerance) {
+  TempDir dir;
+  const RobotModel model = loadRobotModel(kArm7Urdf);
+  const double h = 0.4, r = 0.15;
+  const std::string text = std::string(R"(world:
+  collision_objects:
+    - header: {frame_id: world}
+      id: cone
+      primitives:
+        - type: cone
+          dimensions: [)") +
+                           std::to_string(h) + ", " + std::to_string(r) + R"(]
+      primitive_poses:
+        - position: [0.5, -0.2, 0.8]
+          orientation: [0.2, 0.3, 0.1, 0.9273618495495704]
+)";
+  for (const double tol : {1e-2, 1e-3}) {
+    LoadOptions options;
+    options.primitive_tolerance = tol;
+    const MbmScene scene = loadMbmScene(dir.write("scene0001.yaml", text), model, options);
+    ASSERT_EQ(scene.pieces.size(), 1u);
+    const ConvexPolytope& P = scene.pieces[0].polytope;
+    Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+    X_WC.linear() = Eigen::Quaterniond(0.9273618495495704, 0.2, 0.3, 0.1).normalized().toRotationMatrix();
+    X_WC.translation() = Eigen::Vector3d(0.5, -0.2, 0.8);
+    const auto outside = [&](const Eigen::Vector3d& p_W) {
+      double worst = -std::numeric_limits<double>::infinity();
+      for (int f = 0; f < P.numFaces(); ++f) worst = std::max(worst, P.faceNormal(f).dot(p_W) - P.faceOffset(f));
+      return worst;
+    };
+    // The base circle, the slant surface and the apex.
+    for (int i = 0; i < 720; ++i) {
+      const double a = 2.0 * kPi * (i + 0.37) / 720.0;
+      const double s = (i % 10) / 10.0;  // 0 at the base, towards 1 at the apex
+      const Eigen::Vector3d rim(r * std::cos(a), r * std::sin(a), -h / 2);
+      const Eigen::Vector3d slant((1 - s) * r * std::cos(a), (1 - s) * r * std::sin(a), -h / 2 + s * h);
+      EXPECT_LE(outside(X_WC * rim), 1e-12) << "base circle at angle " << a << ", tolerance " << tol;
+      EXPECT_LE(outside(X_WC * slant), 1e-12) << "slant surface at angle " << a << ", tolerance " << tol;
+    }
+    EXPECT_LE(outside(X_WC * Eigen::Vector3d(0, 0, h / 2)), 1e-12);
+    // Vertices: the apex, and the base polygon within the tolerance outside the circle.
+    int base = 0;
+    for (const Eigen::Vector3d& v_W : P.vertices()) {
+      const Eigen::Vector3d v = X_WC.inverse() * v_W;
+      if (std::abs(v.z() - h / 2) < 1e-9) {
+        EXPECT_LT(std::hypot(v.x(), v.y()), 1e-9);
+        continue;
+      }
+      ++base;
+      EXPECT_NEAR(v.z(), -h / 2, 1e-9);
+      EXPECT_GE(std::hypot(v.x(), v.y()), r - 1e-12);
+      EXPECT_LE(std::hypot(v.x(), v.y()), r + tol + 1e-12);
+    }
+    EXPECT_GE(base, 8);
+  }
 }
 
 TEST(MbmProblem, ReadsARequest) {

@@ -70,8 +70,9 @@ struct SatFrame {
   Eigen::Matrix3d R, absR;
   Eigen::Vector3d t;
   double slack;
-  // Inlined into each test (three of them): outlined, it cost the state
-  // checks about 10% more instructions (callgrind, twistycool).
+  // Inlined into each test (three of them): outlined, it cost twistycool's
+  // state checks about 10% more instructions (callgrind;
+  // docs/results/tuning.md).
   [[gnu::always_inline]] inline SatFrame(const Obb& a, const Obb& b, double slack_) : slack(slack_) {
     R = a.axes_F.transpose() * b.axes_F;
     absR = R.cwiseAbs().array() + kParallelEps;
@@ -447,7 +448,8 @@ bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d&
   if (!(margin_b >= 0.0)) throw InvalidInputError("forEachOverlappingPair: margin_b is negative or NaN");
   // A NaN pose fails every overlap test: it would report no pair at all.
   // Finiteness only (see the header): the full pose check was 28% of the
-  // thin wall's state checks (callgrind), whose poses mostly reach no pair.
+  // thin wall's state-check instructions (callgrind; docs/results/tuning.md),
+  // as its poses mostly reach no pair.
   requireFinitePose(X_AB, "pose X_AB", "forEachOverlappingPair");
   if (a.empty() || b.empty()) return true;
   ScratchLease s;
@@ -544,14 +546,11 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
     double lo = 0.0, hi = 0.0;
     // A yes/no cast (depth first): a triangle leaf of A larger than B's node
     // is tested itself on its 13 axes (its box may be twice its area, a
-    // large triangle's much more). Callgrind (benchmarks/planning
-    // --mdd-only, 1,000 translating edges of each length, checkMotion):
-    // twistycool, the apartment and the cubicles 4.2% to 7.4% fewer
-    // instructions, the maze 5.4%, bugtrap 3.5%. Not for the first contact
-    // (lastValid): there it keeps the heap smaller (bugtrap: 5.5% fewer node
-    // pairs, 62% fewer leaf pairs) but costs more than it saves on bugtrap
-    // (8.9% more instructions) and the maze (6.3%), for 8% to 16% less on
-    // the cubicles, twistycool and the apartment.
+    // large triangle's much more). On the mesh configs' translating
+    // checkMotion (mddual_bench_planning --mdd-only, callgrind) that takes
+    // 3.5% to 7.4% fewer instructions (docs/results/tuning.md). Not for the
+    // first contact (lastValid): there it keeps the heap smaller but costs
+    // more than it saves on bugtrap and the maze.
     if (A.triangle >= 0 && !options.first_contact && A.radius > pb.radius) {
       return triangleObbCastInterval(a.triangle(A.triangle), pb.obb, u, lim, slack, &lo, &hi) ? lo : kInf;
     }
@@ -563,10 +562,10 @@ CastHit castFirst(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, con
   // Nearest first (a heap on the bounds) for the first contact. Without
   // first_contact any contact ends the search and a free sweep visits every
   // pair whose volumes meet in any order, so the pairs go on a stack (depth
-  // first): no heap work, and a leaf is reached after a few steps
-  // (benchmarks/planning --mdd-only, bugtrap translating checkMotion without
-  // the probe states: 23 us -> 14 us; twistycool, cubicles_mesh and the
-  // apartment 2% to 28% less with them).
+  // first): no heap work, and a leaf is reached after a few steps. On the
+  // mesh configs' translating checkMotion (mddual_bench_planning --mdd-only
+  // --cpu) the stack takes up to 28% less time than the heap
+  // (docs/results/tuning.md).
   const bool depth_first = !options.first_contact;
   using Entry = Scratch::Entry;
   const auto later = [](const Entry& x, const Entry& y) { return x.bound > y.bound; };

@@ -18,8 +18,8 @@ void checkPose(const Eigen::Isometry3d& X, const char* name, const char* query) 
   // robot pose for many pairs, two link poses for an arm's self pair. The
   // identity and the last two poses this thread validated are accepted on an
   // exact comparison (NaN never compares equal), which costs a twentieth of
-  // the check (callgrind, the apartment's state checks: the check was 4.5% of
-  // their instructions; an arm's motion checks: 5%, with one pose kept).
+  // the full check (callgrind on the apartment's state checks,
+  // mddual_bench_planning --mdd-only; docs/results/tuning.md).
   using Pose34 = Eigen::Matrix<double, 3, 4>;
   static const Pose34 kIdentity = Pose34::Identity();
   thread_local Pose34 last_valid[2] = {Pose34::Identity(), Pose34::Identity()};

@@ -3,8 +3,9 @@
 //   SEARCH-FV  climbs over the facets of A, each paired with its supporting
 //              vertex of -B (faces of M of type FV), neighbours = facets of A
 //              across an edge (the paper takes facets sharing a vertex; edge
-//              neighbours evaluate a quarter as many faces per step and
-//              measured 30% faster on the paper's polytopes);
+//              neighbours evaluate a quarter as many faces per step: with
+//              the FV/VF candidate pruning, toi on the paper's P4-P5 pair
+//              took 29% less median time, docs/results/tuning.md);
 //   SEARCH-VF  the same over the facets of B, starting at a facet incident to
 //              the vertex of B where SEARCH-FV ended;
 //   SEARCH-EE  starts at the better of the two and climbs over all faces of M

@@ -174,8 +174,8 @@ int ConvexPolytope::supportVertexHierarchy(const Eigen::Vector3d& d_P, SupportSt
 namespace {
 /// Polytopes of at most this many vertices are scanned whole: cheaper than
 /// the table and the climb (boxes, triangles, small hulls). On arm7's motion
-/// checks (mddual_bench_arm_edges, bookshelf_thin and cage) 16 took 7% fewer
-/// instructions than the climb alone, 12 and 32 less than 5%.
+/// checks (mddual_bench_arm_edges, callgrind) 16 takes 7% fewer instructions
+/// than the climb alone, more than 12 or 32 do (docs/results/tuning.md).
 constexpr int kScanVertices = 16;
 }  // namespace
 

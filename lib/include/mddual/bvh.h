@@ -275,7 +275,8 @@ struct BvhStats {
 /// rigid transform: a non-finite entry is an InvalidInputError (it would fail
 /// every volume test and report no pair); orthonormality is left to the pair
 /// queries fn runs (the core's queries check it), as the full check cost a
-/// quarter of a small scene's state check (callgrind, the thin wall).
+/// quarter of a small scene's state check (callgrind on the thin wall;
+/// docs/results/tuning.md).
 bool forEachOverlappingPair(const Bvh& a, const Bvh& b, const Eigen::Isometry3d& X_AB, double margin_b,
                             FunctionRef<bool(int, int)> fn, BvhStats* stats = nullptr);
 

@@ -15,8 +15,9 @@ namespace {
 
 using detail::kInf;
 /// Slots of a warm-start table (per thread and scene): 2^15 slots of 88
-/// bytes, 2.9 MB. Measured against the unordered map (benchmarks/planning,
-/// --mdd-only, mesh configs): the same speed within 7%.
+/// bytes, 2.9 MB. Against the unordered map it replaced, the mesh configs'
+/// checks (mddual_bench_planning --mdd-only) ran at the same speed within 7%
+/// (docs/results/tuning.md).
 constexpr int kWarmSlotBits = 15;
 /// Sub-edge count safety factor (docs/design/rotating-edges.md: OMPL's slerp round-off).
 constexpr double kSubEdgeSafety = 1e-6;
@@ -36,7 +37,7 @@ constexpr int kPrismEnlargeMinVertices = 16;
 /// corners lie within delta / cos(30 degrees) = 1.155 delta of the polygon in
 /// the plane, so the prism's corners lie within sqrt(1.155^2 + 1) = 1.53
 /// delta of the piece, inside kEnlargedReach.
-constexpr double kGrownPolygonMaxTurn = 3.14159265358979323846 / 3.0;
+constexpr double kGrownPolygonMaxTurn = kPi / 3.0;
 /// Smallest delta relative to the robot radius.
 constexpr double kMinRotationToleranceRel = 1e-6;
 /// Largest delta relative to the robot radius: beyond, the enlarged pieces
@@ -503,15 +504,9 @@ bool MddScene::probeStatesCollide(const EdgeMotion& motion, EdgeContact* out) co
   // quarters). A translation edge takes the first two only: its exact sweep
   // costs a few state tests. A rotating edge takes all four: its search
   // costs tens of them, and an invalid edge's colliding states are often
-  // found by a few samples. Measured (benchmarks/planning, --mdd-only, rotating
-  // checkMotion): against the end and middle only, eight states (adding the
-  // quarters and eighths) took 0.5x to 0.8x the time on maze_planar, 0.9x on the
-  // apartment, the same on bugtrap, twistycool and the cubicles; four states
-  // against eight (393b6f4, 600 edges, two rounds alternating): bugtrap 5% to
-  // 9% less time, cubicles_mesh 9% to 16%, the mesh and trap scenes and
-  // blobs up to 15%, twistycool and the apartment within the noise,
-  // maze_planar and planar 5% less for edges up to the range and 7% to 9%
-  // more at the range; sixteen states were 5% to 30% slower than eight.
+  // found by a few samples. On most scenes' rotating checkMotion
+  // (mddual_bench_planning --mdd-only --cpu) four states take up to 16% less
+  // time than eight (docs/results/tuning.md, with two and sixteen).
   static constexpr std::array<double, 4> kProbes = {1.0, 0.5, 0.25, 0.75};
   const std::size_t count = motion.rotates() ? kProbes.size() : 2;
   PieceContact which;

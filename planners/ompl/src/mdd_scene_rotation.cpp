@@ -22,27 +22,18 @@ constexpr double kSlerpRoundoffRel = 1e-8;
 /// kTimeSplitAlways times the larger radius of its nodes that have children,
 /// never when e is below kTimeSplitNever times it, and in between when the
 /// nodes' volumes without the growth e clear the triple; otherwise the larger
-/// node is split. Measured on the trap and mesh scenes (rotating edges up to
-/// pi, benchmarks/planning): splitting the largest of e and the radii (both
-/// 1) needs 3x the triples and core queries of (0.1, 0.01); splitting time
-/// whenever e > 0.05 r, 1.5x. Re-measured at 598fa87 (mddual_bench_planning
-/// --mdd-only --cpu --states 10 --edges 300 --passes 2, rotating edges, two
-/// rounds, the current values against each change): 0.05 here gave the
-/// maze's lastValid checks 3% to 9% less time and twistycool's at the range
-/// 3% to 4% less, but the cubicles' checkMotion up to the range 34% more and
-/// bugtrap's 17% to 19% more; 0.2 the cubicles' checkMotion 15% less but
-/// lastValid 10% to 22% more on bugtrap, twistycool and the maze;
-/// kTimeSplitNever 0.005 or 0.02 faster nowhere (up to 9% slower).
+/// node is split. On the trap's and the mesh scene's rotating edges
+/// (mddual_bench_planning), splitting by the largest of e and the radii
+/// alone needs 3x the triples and core queries of these values
+/// (docs/results/tuning.md, with the other values tried).
 constexpr double kTimeSplitAlways = 0.1;
 constexpr double kTimeSplitNever = 0.01;
 /// When neither node's radius exceeds the other's by more than this factor,
-/// both are split at once (four child triples). Measured on bugtrap
-/// (benchmarks/planning, rotating edges): 15% to 25% less time than
-/// splitting the larger node only, 1.5 about the same; splitting both
-/// whenever both have children made the apartment 20x slower. Re-measured at
-/// 598fa87 (as kTimeSplitAlways): 4 made the maze's checks up to 31% slower
-/// and bugtrap's lastValid 7% to 19%; 1.3 was faster nowhere (bugtrap's and
-/// twistycool's checkMotion up to the range 4% to 8% slower).
+/// both are split at once (four child triples), not only the larger; with no
+/// limit (both whenever both have children) the apartment is much slower. On
+/// bugtrap's rotating edges (mddual_bench_planning --cpu) this takes 15% to
+/// 25% less time than splitting the larger node only
+/// (docs/results/tuning.md, with the other factors tried).
 constexpr double kBothSplitRatio = 2.0;
 
 /// A time interval [ta, tb] of the edge and the pose the triples on it use.
@@ -241,10 +232,9 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // Whether a sphere of radius rs centred at c_W, swept by s u_W for s in
     // [0, len] (v_W = len u_W), misses M's sphere, then M's box (a node of
     // large flat triangles has a thin box in a wide sphere). The box test
-    // before N's box is posed: callgrind (RRT-Connect's recorded checks,
-    // MDD's checkEdge) bugtrap -6.1%, twistycool -0.8%, the apartment +0.6%
-    // (its checks are mostly state checks; see docs/results/planning-speed.md for
-    // the variants tried).
+    // comes before N's box is posed: on bugtrap's recorded RRT-Connect
+    // checks (mddual_bench_replay --load, callgrind) it takes 6.1% off
+    // checkEdge's instructions (docs/results/tuning.md).
     const auto sphereMisses = [&](const Eigen::Vector3d& c_W, double rs, const Eigen::Vector3d& dir_W, double len,
                                   const Eigen::Vector3d& v_W) {
       const double s = len > 0.0 ? std::clamp((M.centre - c_W).dot(dir_W), 0.0, len) : 0.0;
@@ -257,9 +247,10 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     // a little off unit norm): over I, within that distance of the segment
     // p(ta) -> p(tb), with no growth from the rotation. Asked only when its
     // radius is below N's grown radius r (max_norm(N) < N.radius + e: a
-    // long turn's coarse triples). Measured (benchmarks/planning, 400
-    // rotating edges, --cpu): validity checks 5% to 20% less time on
-    // twistycool, bugtrap, cubicles_mesh and the mesh scene.
+    // long turn's coarse triples). On the rotating edges of
+    // mddual_bench_planning (--cpu) it takes 5% to 20% off the validity
+    // checks of twistycool, bugtrap, cubicles_mesh and the mesh scene
+    // (docs/results/tuning.md).
     const double r0 = N.max_norm * (1.0 + kSlerpRoundoffRel);
     if (r0 < r && sphereMisses(I.X_WI.translation(), r0, I.u_W, I.length, I.v_W)) return kInf;
     if (sphereMisses(posed.c_W, r, u_W, length, posed.sweep.v_W)) return kInf;
@@ -271,12 +262,11 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
     if (sweptAabbApart(M.box, box_W.centre_F, box_W.aabbHalf(), u_W, length, slack)) return kInf;
     // A world leaf that is a triangle: the triangle itself on its 13 axes in
     // place of its box (which a large triangle fills only half of), the
-    // inner box's verdict on the same axes. Callgrind (benchmarks/planning
-    // --mdd-only, 1,000 rotating edges of each length): checkMotion
-    // twistycool 9.8% fewer instructions, the cubicles 5.1%, the maze 4.1%,
-    // bugtrap 3.6%, the apartment 2.5%; with lastValid 5.0% (bugtrap) to
-    // 14.4% (the cubicles). Asked only for triangles larger than N's grown
-    // sphere (the translating cast's rule), it was no better anywhere.
+    // inner box's verdict on the same axes. On the mesh configs' rotating
+    // checkMotion (mddual_bench_planning --mdd-only, callgrind) it takes
+    // 2.5% to 9.8% fewer instructions (docs/results/tuning.md). Asked only
+    // for triangles larger than N's grown sphere (the translating cast's
+    // rule), it was no better anywhere.
     const std::array<Eigen::Vector3d, 3>* tri = M.triangle >= 0 ? &worldTreeAt(wn & 1).triangle(M.triangle) : nullptr;
     if (length == 0.0) {
       const bool apart = tri ? triangleObbApart(*tri, box_W, slack) : obbsDisjoint(M.obb, box_W, slack);
@@ -306,10 +296,9 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
   const auto splitTime = [&](const Triple& t, const Interval& I) {
     const double tm = 0.5 * (I.ta + I.tb);
     // A half outside [t.bound, t.until] holds no contact: the triple's
-    // volumes, which hold its pieces over all of I, meet only then. Callgrind
-    // (benchmarks/planning, --edges 200, every kind of edge): 2.4% fewer
-    // instructions in bugtrap's checks (one-time enlarged pieces excluded),
-    // 1.2% in twistycool's.
+    // volumes, which hold its pieces over all of I, meet only then. Dropping
+    // it saves 2.4% of bugtrap's checkEdge instructions (callgrind,
+    // mddual_bench_planning --mdd-only; docs/results/tuning.md).
     if (t.bound <= tm) push(t.robot, t.world, makeInterval(I.ta, tm));
     if (t.until >= tm) push(t.robot, t.world, makeInterval(tm, I.tb));
   };
@@ -465,12 +454,11 @@ void MddScene::checkRotating(const EdgeMotion& motion, EdgeQuery query, double f
       // Split the interval when e is large against both nodes; keep it
       // when e is small; in between, when the volumes without growth would
       // clear the triple (the growth is to blame). That test is a heuristic
-      // (any split is sound): the 6 face axes, not all 15 (callgrind on the
-      // rotating edges of benchmarks/planning: 2% to 6% fewer instructions
-      // per check on bugtrap, twistycool, maze_planar and the cubicles),
-      // asked by bound() in its own cast (Triple::ungrown). Asked here in a
-      // second cast, it was 14% of checkRotating's instructions on bugtrap's
-      // RRT-Connect checks (callgrind, mddual_bench_replay).
+      // (any split is sound): the 6 face axes, not all 15 (fewer
+      // instructions per check), asked by bound() in its own cast
+      // (Triple::ungrown). Asked here in a second cast, it was 14% of
+      // checkRotating's instructions on bugtrap's RRT-Connect checks
+      // (callgrind, mddual_bench_replay; docs/results/tuning.md).
       const double r = std::max(rn, rm);
       const double growth = ps.across;
       // Not below the round-off part: halving would barely shrink e.

@@ -198,7 +198,8 @@ class PlanningSpace {
   ompl::base::StateSpacePtr space_;
   /// The SO(2) and SO(3) components of space_ at any depth, found once:
   /// rotationsWithinBounds() runs on every motion check, and finding them
-  /// with dynamic_cast took 4% of twistycool's rotating checks (callgrind).
+  /// with dynamic_cast took 4% of twistycool's motion checks (callgrind;
+  /// docs/results/tuning.md).
   struct RotationPart {
     const ompl::base::StateSpace* space;
     std::vector<unsigned int> path;  ///< component indices from the state down to it

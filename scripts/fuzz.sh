@@ -6,6 +6,7 @@
 #   fuzz_urdf      configs/**/*.urdf
 #   fuzz_mesh      configs/**/meshes/* (first byte: the format)
 #   fuzz_jsonl     fuzz/seeds/jsonl (first byte: pd's method)
+#   fuzz_mbm       configs/arm7's first problems and SRDF (first byte: the reader)
 # plus every past finding in fuzz/findings (named <target>-<what>).
 # MDDUAL_FUZZ_RUNS sets the executions of every target (default: per target,
 # below, about 25 to 60 s each on a 2-core machine); -seed=1 makes a run
@@ -17,7 +18,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 # Executions per target (about 25 to 60 s each here): the mesh loader runs
 # at ~35 executions/s, the others at 150 to 400.
-declare -A default_runs=([polytope]=10000 [cfg]=10000 [urdf]=10000 [mesh]=2000 [jsonl]=8000)
+declare -A default_runs=([polytope]=10000 [cfg]=10000 [urdf]=10000 [mesh]=2000 [jsonl]=8000 [mbm]=20000)
 jobs="${MDDUAL_JOBS:-$(nproc)}"
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: MDDUAL_JOBS must be a positive integer (got '$jobs')"; exit 1; }
 declare -A pids
@@ -32,11 +33,11 @@ fuzz_dir=build/clang-fuzz
 CC=clang CXX=clang++ cmake -G Ninja -S . -B "$fuzz_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=$instrumented_flags" -DMDDUAL_BUILD_FUZZERS=ON \
   -DMDDUAL_BUILD_TESTS=OFF -DMDDUAL_BUILD_BENCHMARKS=OFF -DMDDUAL_BUILD_CLI=OFF >/dev/null
-cmake --build "$fuzz_dir" -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl
+cmake --build "$fuzz_dir" -j "$jobs" --target fuzz_polytope fuzz_cfg fuzz_urdf fuzz_mesh fuzz_jsonl fuzz_mbm
 
 corpus="$fuzz_dir/corpus"
 rm -rf "$corpus"
-mkdir -p "$corpus"/{polytope,cfg,urdf,mesh,jsonl}
+mkdir -p "$corpus"/{polytope,cfg,urdf,mesh,jsonl,mbm}
 cp fuzz/seeds/polytope/* "$corpus/polytope/"
 cp fuzz/seeds/jsonl/* "$corpus/jsonl/"
 # Past findings replay first in every run (fuzz/findings/<target>-*).
@@ -56,6 +57,13 @@ while IFS= read -r -d '' mesh; do
   { printf "$b"; head -c 65536 "$mesh"; } >"$corpus/mesh/seed$i"
   i=$((i + 1))
 done < <(find configs -path '*meshes*' -type f -print0)
+
+# The mbm target reads the reader from the first byte (0 scene, 1 request, 2 SRDF).
+for set in configs/arm7/problems/*; do
+  { printf '\x00'; cat "$set/scene0001.yaml"; } >"$corpus/mbm/$(basename "$set")-scene"
+  { printf '\x01'; cat "$set/request0001.yaml"; } >"$corpus/mbm/$(basename "$set")-request"
+done
+{ printf '\x02'; cat configs/arm7/arm7.srdf; } >"$corpus/mbm/arm7-srdf"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
@@ -79,7 +87,7 @@ run_target() {
   grep -E "^Done [0-9]+ runs" "$fuzz_dir/fuzz_$target.log" || true
   echo "fuzz_$target: $runs executions in $(($(date +%s) - start)) s, no finding"
 }
-targets=(mesh polytope jsonl urdf cfg)
+targets=(mesh polytope jsonl mbm urdf cfg)
 for target in "${targets[@]}"; do
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
   run_target "$target" >"$fuzz_dir/fuzz_$target.summary" 2>&1 &

@@ -2,7 +2,8 @@
 // arm7's problems: one log per (problem, checker), the database with one
 // config for the directory, every exact solution verified, the mdd
 // checker's never invalid; and the errors of a problem directory given
-// without its robot, with an unknown planner, or with a start in collision.
+// without its robot, with an unknown planner, with a start or a goal in
+// collision, or with a start outside its joint limits.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -107,13 +108,26 @@ TEST(CliBenchArms, BadProblemsAndFlagsFailWithOneClearLine) {
               "unknown arm checker 'vamp'");
   expectError(runCli({"bench", problems.string(), "--robot", urdf, "--srdf", srdf, "--group", "legs"}),
               "has no group 'legs'");
+  // Each case rewrites the second request with one bad state and expects
+  // its file and the reason.
+  auto expectRequestError = [&](const std::string& request, const std::string& part) {
+    std::ofstream(problems / "request0002.yaml") << "group_name: arm\n" << request;
+    expectError(runCli({"bench", problems.string(), "--robot", urdf, "--srdf", srdf}), "request0002.yaml: " + part);
+  };
+  const std::string goal_joint1 =
+      "goal_constraints:\n  - joint_constraints:\n      - {joint_name: joint1, position: 0.5}\n";
   // A start state with the arm folded into the base.
-  std::ofstream(problems / "request0002.yaml") << "group_name: arm\nstart_state:\n  joint_state:\n"
-                                                  "    name: [joint2, joint4]\n    position: [1.7, -3.0]\n"
-                                                  "goal_constraints:\n  - joint_constraints:\n"
-                                                  "      - {joint_name: joint1, position: 0.5}\n";
-  expectError(runCli({"bench", problems.string(), "--robot", urdf, "--srdf", srdf}),
-              "request0002.yaml: the start state is in collision: link '");
+  expectRequestError(
+      "start_state:\n  joint_state:\n    name: [joint2, joint4]\n    position: [1.7, -3.0]\n" + goal_joint1,
+      "the start state is in collision: link '");
+  // The same folded arm as the goal.
+  expectRequestError(
+      "goal_constraints:\n  - joint_constraints:\n      - {joint_name: joint2, position: 1.7}\n"
+      "      - {joint_name: joint4, position: -3.0}\n",
+      "the goal state is in collision: link '");
+  // A start value outside its joint's limits (joint4: [-3, -0.07]).
+  expectRequestError("start_state:\n  joint_state:\n    name: [joint4]\n    position: [0.5]\n" + goal_joint1,
+                     "start_state: joint 'joint4' = 0.500000 is outside its limits [-3.000000, -0.070000]");
 }
 
 }  // namespace

@@ -417,7 +417,11 @@ RobotModel loadRobotModel(const std::filesystem::path& urdf_file, const RobotLoa
   for (Joint& joint : sorted) {
     if (joint.mimic) joint.variable = variable_of[static_cast<std::size_t>(joint.variable)];
   }
-  return RobotModel(model->getName(), std::move(links), std::move(sorted));
+  try {
+    return RobotModel(model->getName(), std::move(links), std::move(sorted));
+  } catch (const SceneError& e) {  // the model's own checks (limits, axes): name the file
+    throw SceneError(display(urdf_file) + ": " + e.what());
+  }
 }
 
 }  // namespace mddual::scene

@@ -228,14 +228,14 @@ TEST(RobotModel, RejectsBadJoints) {
           <axis xyz="0 0 1"/><limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
           <joint name="k" type="fixed"><parent link="l"/><child link="m"/></joint>)"));
       },
-      {"joint 'j'", "lower <= upper"});
+      {"bad.urdf: robot 'r': joint 'j'", "lower <= upper"});
   expectSceneError(
       [&] {
         loadRobotModel(robot(R"(<joint name="j" type="prismatic"><parent link="base"/><child link="l"/>
           <axis xyz="0 0 0"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>
           <joint name="k" type="fixed"><parent link="l"/><child link="m"/></joint>)"));
       },
-      {"joint 'j'", "axis"});
+      {"bad.urdf: robot 'r': joint 'j'", "axis"});
   expectSceneError(
       [&] {
         loadRobotModel(robot(R"(<joint name="j" type="continuous"><parent link="base"/><child link="l"/></joint>

@@ -81,6 +81,7 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
   const int per_problem = static_cast<int>(24 * static_cast<std::size_t>(scale) / problems);
   std::mt19937_64 rng(seed);
   int edges = 0, colliding = 0, free_edges = 0, false_alarms = 0, near_contact = 0;
+  int near_false_alarms = 0;  // false alarms among the near-contact edges
   for (std::size_t k = 0; k < problems; ++k) {
     const ArmProblem p = loadArmProblem(robot, files[k]);
     const FclArmScene fcl(p.scene);
@@ -95,6 +96,7 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
     };
     for (int e = 0; e < per_problem; ++e) {
       std::vector<double> q0, q1;
+      bool near = false;
       switch (e % 6) {
         case 0:  // random pair
           q0 = randomQ();
@@ -127,6 +129,7 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
           }
           if (!(t > 0.0 && t < 1.0)) break;  // kept as a random pair
           ++near_contact;
+          near = true;
           double largest = 0.0;
           for (int v : group) largest = std::max(largest, std::abs(q1[std::size_t(v)] - q0[std::size_t(v)]));
           const double cut = e % 6 == 4 ? std::max(0.0, t - step / largest) : std::min(1.0, t + step / largest);
@@ -145,14 +148,18 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
       } else {
         ++free_edges;
         false_alarms += validity.collides ? 1 : 0;
+        near_false_alarms += validity.collides && near ? 1 : 0;
       }
     }
   }
   EXPECT_GE(colliding, edges / 10) << "too few colliding edges to test the check";
   EXPECT_GE(free_edges, edges / 10) << "too few free edges to test the check";
   EXPECT_GE(near_contact, edges / 4) << "too few near-contact edges (a third of them expected)";
-  std::printf("%s/%s: %d edges (%d near a contact), %d colliding, %d free, %d false alarms (dense step %g rad)\n",
-              arm.robot.c_str(), arm.set.c_str(), edges, near_contact, colliding, free_edges, false_alarms, step);
+  std::printf(
+      "%s/%s: %d edges (%d near a contact), %d colliding, %d free, %d false alarms (%d near a contact) "
+      "(dense step %g rad)\n",
+      arm.robot.c_str(), arm.set.c_str(), edges, near_contact, colliding, free_edges, false_alarms, near_false_alarms,
+      step);
 }
 
 std::vector<ArmSet> armSets() {

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The soundness suite: every case family of benchmarks/soundness/cases.h
 # (translating-boxes, obb-hierarchy, rotating-link-arc, screw-vs-interpolated,
-# thin-wall, far-from-origin, grazing, arm-rotating-link) with every checker
-# (mdd, fcl, fcl-continuous, hull-cast; the arm family without
+# thin-wall, far-from-origin, grazing, arm-rotating-link, sliver-mesh) with
+# every checker (mdd, fcl, fcl-continuous, hull-cast, hull-cast-edge; the mesh
+# families also fcl-continuous-obb and -rss; the arm family without
 # fcl-continuous), against the families' ground truth. Builds
 # Release in build-bench/ (MDDUAL_BENCH_BUILD_DIR), writes
 # out/soundness/summary.md (MDDUAL_BENCH_OUT) and rewrites the table of

@@ -33,6 +33,15 @@ Eigen::Vector3d randomVector(Rng& rng, double lo, double hi) {
   return {x, y, z};
 }
 
+/// Half extents each log-uniform in [lo, hi] (drawn z, y, x: the families'
+/// samples were made in that order).
+Eigen::Vector3d logUniformHalf(Rng& rng, double lo, double hi) {
+  const double z = logUniform(rng, lo, hi);
+  const double y = logUniform(rng, lo, hi);
+  const double x = logUniform(rng, lo, hi);
+  return {x, y, z};
+}
+
 Eigen::Vector3d randomUnit(Rng& rng) {
   std::normal_distribution<double> normal;
   for (;;) {
@@ -80,6 +89,15 @@ bool startsFree(const Case& c, const Eigen::Isometry3d& X) {
   return detail::sceneGap(c, X) > 0.0;
 }
 
+/// An R^3 case of `family` in the box of half side 10 about o.
+Case r3Case(const std::string& family, const Eigen::Vector3d& o) {
+  Case c;
+  c.family = family;
+  c.kind = planning::SpaceKind::kR3;
+  c.bounds = around(o, 10.0);
+  return c;
+}
+
 /// `count` translation edges of the fixed-orientation robot of `c` aimed near a
 /// random world box (within `aim` of its centre), ends inside the bounds.
 void addTranslationEdges(Case& c, Rng& rng, int count, double aim) {
@@ -110,16 +128,10 @@ std::vector<Case> translatingBoxes(Rng& rng, int edges, const Eigen::Vector3d& o
   std::vector<Case> out;
   constexpr int kEdgesPerCase = 4;
   for (int e = 0; e < edges; e += kEdgesPerCase) {
-    Case c;
-    c.family = family;
-    c.kind = planning::SpaceKind::kR3;
-    c.bounds = around(o, 10.0);
+    Case c = r3Case(family, o);
     c.q_fixed = randomRotation(rng);
     Box robot;
-    const double rz = logUniform(rng, 0.02, 1.0);
-    const double ry = logUniform(rng, 0.02, 1.0);
-    const double rx = logUniform(rng, 0.02, 1.0);
-    robot.half = Eigen::Vector3d(rx, ry, rz);
+    robot.half = logUniformHalf(rng, 0.02, 1.0);
     c.robot.push_back(robot);
     double reach = robot.half.norm();
     for (int i = 0; i < boxes; ++i) {
@@ -127,10 +139,7 @@ std::vector<Case> translatingBoxes(Rng& rng, int edges, const Eigen::Vector3d& o
       const Eigen::Quaterniond q = randomRotation(rng);
       const Eigen::Vector3d p = o + (boxes > 1 ? randomVector(rng, -1.5, 1.5) : Eigen::Vector3d::Zero());
       b.X = pose(q, p);
-      const double hz = logUniform(rng, 0.02, 1.5);
-      const double hy = logUniform(rng, 0.02, 1.5);
-      const double hx = logUniform(rng, 0.02, 1.5);
-      b.half = Eigen::Vector3d(hx, hy, hz);
+      b.half = logUniformHalf(rng, 0.02, 1.5);
       c.world.push_back(b);
       reach = std::max(reach, robot.half.norm() + b.half.norm());
     }
@@ -241,10 +250,7 @@ std::vector<Case> thinWall(Rng& rng, int edges) {
   std::vector<Case> out;
   constexpr int kEdgesPerCase = 4;
   for (int e = 0; e < edges; e += kEdgesPerCase) {
-    Case c;
-    c.family = "thin-wall";
-    c.kind = planning::SpaceKind::kR3;
-    c.bounds = around(Eigen::Vector3d::Zero(), 10.0);
+    Case c = r3Case("thin-wall", Eigen::Vector3d::Zero());
     Box robot;
     robot.half = Eigen::Vector3d::Constant(0.1);
     c.robot.push_back(robot);
@@ -272,10 +278,7 @@ std::vector<Case> thinWall(Rng& rng, int edges) {
 std::vector<Case> grazing(Rng& rng, int edges) {
   std::vector<Case> out;
   for (int e = 0; e < edges; e += 2) {
-    Case c;
-    c.family = "grazing";
-    c.kind = planning::SpaceKind::kR3;
-    c.bounds = around(Eigen::Vector3d::Zero(), 10.0);
+    Case c = r3Case("grazing", Eigen::Vector3d::Zero());
     c.q_fixed = randomRotation(rng);
     Box robot, world;
     robot.half = randomVector(rng, 0.3, 1.0);
@@ -464,6 +467,95 @@ double exactTranslationContact(const Case& c, const Eigen::Isometry3d& X1, const
   return first;
 }
 
+/// R^3: one flat mesh obstacle near the origin, in a random orientation (a
+/// box of half.z() 0, meshed by buildScene in `flat_strips` strips), one kind
+/// a case in turn: a large flat triangle pair (4 to 9 across), a strip (1 to
+/// 4 long, 0.001 to 0.02 wide: two needle triangles) or a sheet of slivers
+/// (2 to 4 by 0.4 to 1.2, in 32 to 64 strips: triangles 50 to 640 times as
+/// long as high). A box of 0.02 to 0.6 across in a random orientation
+/// aimed at a point of the plane up to its radius beyond the rectangle: 3
+/// edges in 4 cross the plane there (or stop short), 1 in 4 slide along it
+/// at -0.02 to +0.05 from touching it.
+std::vector<Case> sliverMesh(Rng& rng, int edges) {
+  std::vector<Case> out;
+  constexpr int kEdgesPerCase = 4;
+  for (int e = 0; e < edges; e += kEdgesPerCase) {
+    Case c = r3Case("sliver-mesh", Eigen::Vector3d::Zero());
+    c.q_fixed = randomRotation(rng);
+    c.world_triangles = true;
+    Box robot;
+    robot.half = logUniformHalf(rng, 0.01, 0.3);
+    c.robot.push_back(robot);
+    // The kinds in turn: a large flat pair, a strip, a sheet.
+    const int kind = static_cast<int>(out.size() % 3);
+    double hx = 0.0, hy = 0.0;
+    if (kind == 0) {
+      hx = uniform(rng, 2.0, 4.5);
+      hy = uniform(rng, 2.0, 4.5);
+    } else if (kind == 1) {
+      hx = uniform(rng, 0.5, 2.0);
+      hy = 0.5 * logUniform(rng, 0.001, 0.02);
+    } else {
+      hx = uniform(rng, 1.0, 2.0);
+      hy = uniform(rng, 0.2, 0.6);
+      c.flat_strips = std::uniform_int_distribution<int>(32, 64)(rng);
+    }
+    Box flat;
+    const Eigen::Quaterniond q = randomRotation(rng);
+    flat.X = pose(q, randomVector(rng, -1.0, 1.0));
+    flat.half = Eigen::Vector3d(hx, hy, 0.0);
+    c.world.push_back(flat);
+    const Eigen::Vector3d n = flat.X.linear().col(2);
+    const double support = radius(placed(robot, pose(c.q_fixed, Eigen::Vector3d::Zero())), n);
+    const double r = robot.half.norm();
+    for (int k = 0, tries = 0; k < std::min(kEdgesPerCase, edges - e) && tries < kMaxTries; ++tries) {
+      const double ay = uniform(rng, -1.0, 1.0);
+      const double ax = uniform(rng, -1.0, 1.0);
+      const Eigen::Vector3d target = flat.X * Eigen::Vector3d(ax * (hx + r), ay * (hy + r), 0.0);
+      const bool slide = uniform(rng, 0.0, 1.0) < 0.25;
+      Eigen::Vector3d dir = randomUnit(rng);
+      const double before = uniform(rng, 1.0, 4.0);
+      const double after = uniform(rng, slide ? 1.0 : -0.5, 4.0);
+      Eigen::Vector3d via = target;
+      if (slide) {
+        dir -= dir.dot(n) * n;
+        if (dir.norm() < 0.1) continue;
+        dir.normalize();
+        const double offset = support + uniform(rng, -0.02, 0.05);
+        via += (uniform(rng, 0.0, 1.0) < 0.5 ? -offset : offset) * n;
+      } else if (std::abs(dir.dot(n)) < 0.3) {
+        continue;
+      }
+      const Eigen::Vector3d start = via - before * dir, end = via + after * dir;
+      const Eigen::Isometry3d X1 = pose(c.q_fixed, start), X2 = pose(c.q_fixed, end);
+      if (!c.bounds.contains(start) || !c.bounds.contains(end) || !startsFree(c, X1)) continue;
+      c.edges.emplace_back(X1, X2);
+      ++k;
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+/// The flat box b (half.z() 0) cut across its y side into `strips` strips of
+/// two triangles each, as mesh pieces.
+std::vector<scene::Piece> flatTriangles(const Box& b, int strips) {
+  const Eigen::Vector3d u = 2.0 * b.half.x() * b.X.linear().col(0);
+  const Eigen::Vector3d v = 2.0 * b.half.y() / strips * b.X.linear().col(1);
+  const Eigen::Vector3d corner = b.X * Eigen::Vector3d(-b.half.x(), -b.half.y(), 0.0);
+  std::vector<scene::Piece> out;
+  const auto add = [&out](const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& r) {
+    out.push_back(
+        scene::Piece::make(ConvexPolytope::fromPoints({p, q, r}), scene::PieceKind::kTriangle, "world sliver"));
+  };
+  for (int k = 0; k < strips; ++k) {
+    const Eigen::Vector3d o = corner + static_cast<double>(k) * v;
+    add(o, o + u, o + u + v);
+    add(o, o + u + v, o + v);
+  }
+  return out;
+}
+
 }  // namespace
 
 double boxGap(const Box& a, const Box& b) {
@@ -499,9 +591,12 @@ double armGap(const Case& c, const std::vector<double>& q) {
 }  // namespace detail
 
 const std::vector<std::string>& familyNames() {
+  // A family's seed depends on its place here (makeFamily): a new family goes
+  // last, so that the others keep their samples.
   static const std::vector<std::string> names = {
       "translating-boxes", "obb-hierarchy",   "rotating-link-arc", "screw-vs-interpolated",
-      "thin-wall",         "far-from-origin", "grazing",           "arm-rotating-link"};
+      "thin-wall",         "far-from-origin", "grazing",           "arm-rotating-link",
+      "sliver-mesh"};
   return names;
 }
 
@@ -517,6 +612,7 @@ std::vector<Case> makeFamily(const std::string& family, std::uint64_t seed, int 
   if (family == "screw-vs-interpolated") return screwVsInterpolated(rng, edges);
   if (family == "thin-wall") return thinWall(rng, edges);
   if (family == "grazing") return grazing(rng, edges);
+  if (family == "sliver-mesh") return sliverMesh(rng, edges);
   if (family == "arm-rotating-link") return armRotatingLink(rng, edges, family);
   // far-from-origin: half translating boxes, half rotating links, at 1e6.
   std::vector<Case> out = translatingBoxes(rng, edges / 2, Eigen::Vector3d::Constant(1e6), 1, false, family);
@@ -544,7 +640,9 @@ Scene buildScene(const Case& c) {
   std::vector<scene::Piece> robot, world;
   for (const Box& b : c.robot) robot.push_back(planning::examples::convexPiece(corners(b), "robot box"));
   for (const Box& b : c.world) {
-    if (c.world_triangles) {
+    if (c.world_triangles && b.half.z() == 0.0) {
+      for (scene::Piece& p : flatTriangles(b, c.flat_strips)) world.push_back(p);
+    } else if (c.world_triangles) {
       for (scene::Piece& p : planning::examples::boxTriangles(b.half, b.X, "world mesh box")) world.push_back(p);
     } else {
       world.push_back(planning::examples::convexPiece(corners(b), "world box"));

@@ -1,8 +1,9 @@
 // The soundness suite: named, seeded families of edges where collision
 // checkers are known to go wrong, each edge with an independent ground truth,
 // and the checkers it compares (mdd, fcl, fcl-continuous, hull-cast,
-// hull-cast-edge; for the arm family the same without fcl-continuous, its arm
-// checkers).
+// hull-cast-edge; on the mesh families also fcl-continuous-obb and
+// fcl-continuous-rss; for the arm family the same without fcl-continuous, its
+// arm checkers).
 // Shared by the runner (run_soundness.cpp, scripts/run-soundness.sh) and the
 // tests (tests/benchmarks/soundness).
 //
@@ -23,8 +24,10 @@
 //   translating-boxes      R^3: a box translating past or through another
 //                          (sizes 0.02 to 1, random orientations).
 //   obb-hierarchy          the same with the world's boxes as triangle meshes
-//                          (FCL: one BVHModel<OBBRSS> soup; its only hierarchy,
-//                          FclScene has no OBB option).
+//                          (FCL: FclScene's one BVHModel<OBBRSS> soup; the
+//                          checkers fcl-continuous-obb and -rss rerun FCL's
+//                          conservative advancement on BVHModel<OBB> and
+//                          BVHModel<RSS>, fcl_bvh.h).
 //   rotating-link-arc      SE(2): a link 1.5 to 3 long turning 30 to 120
 //                          degrees about one end; the obstacle mostly inside
 //                          its arc but outside the hull of its end poses.
@@ -45,6 +48,14 @@
 //                          boxes (forward kinematics of the planar chain, in
 //                          this file) against the world and each other
 //                          (the non-adjacent pairs, as the arm checkers).
+//   sliver-mesh            R^3: one flat mesh obstacle, a large flat
+//                          triangle pair (4 to 9 across), a strip 1 to 4 long
+//                          and 0.001 to 0.02 wide (two needle triangles) or a
+//                          sheet 2 to 4 long cut into 32 to 64 strips of two
+//                          slivers (50 to 640 times as long as high); a
+//                          box of 0.02 to 0.6 across crossing its plane or
+//                          sliding along it (the ground truth sees the
+//                          rectangle, a box of thickness 0: the same points).
 #pragma once
 
 #include <ompl/base/SpaceInformation.h>
@@ -83,6 +94,9 @@ struct Case {
   std::vector<Box> robot;                                       ///< body frame
   std::vector<Box> world;                                       ///< world frame
   bool world_triangles = false;                                 ///< world boxes as 12 triangles each (mesh pieces)
+  /// Mesh worlds: a flat box (half.z() 0) is a rectangle cut across its y
+  /// side into `flat_strips` strips of two triangles each, not 12 triangles.
+  int flat_strips = 1;
   std::vector<std::pair<Eigen::Isometry3d, Eigen::Isometry3d>> edges;
   /// Arm cases: the planar arm's link lengths (empty for a rigid body; then
   /// `robot` is unused), its links' half width and height, and its edges
@@ -144,9 +158,13 @@ double screwFirstContact(const Case& c, int edge, double min_step = 1e-5);
 /// The checkers compared: "mdd", "fcl", "fcl-continuous", "hull-cast" (the
 /// Bullet cast over OMPL's segments), "hull-cast-edge" (one cast per edge).
 const std::vector<std::string>& checkerNames();
-/// The checkers of a family: checkerNames(), or for the arm family the arm
-/// checkers "mdd", "fcl", "hull-cast", "hull-cast-edge" (there is no
-/// continuous FCL arm check).
+/// Whether the family's world is a triangle mesh (obb-hierarchy,
+/// sliver-mesh).
+bool meshFamily(const std::string& family);
+/// The checkers of a family: checkerNames(); on the mesh families with
+/// "fcl-continuous-obb" and "fcl-continuous-rss" after "fcl-continuous"
+/// (fcl_bvh.h); for the arm family the arm checkers "mdd", "fcl",
+/// "hull-cast", "hull-cast-edge" (there is no continuous FCL arm check).
 const std::vector<std::string>& checkerNames(const std::string& family);
 /// A SpaceInformation whose motion validator is `checker`'s (see
 /// run-soundness.sh), of the case's kind (rigid or arm); throws

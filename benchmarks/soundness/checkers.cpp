@@ -3,13 +3,17 @@
 // checkers of the same names as `mddual bench` installs them). hull-cast is
 // the Bullet cast over OMPL's segments (Tesseract's motion validator, what
 // `mddual bench` plans with), hull-cast-edge one cast between the edge's two
-// ends (MoveIt's cast between two states).
+// ends (MoveIt's cast between two states). On the mesh families
+// fcl-continuous-obb and fcl-continuous-rss are FCL's conservative advancement
+// on BVHModel<OBB> and BVHModel<RSS> (fcl_bvh.h), fcl-continuous being
+// FclScene's on BVHModel<OBBRSS>.
 #include <ompl/base/DiscreteMotionValidator.h>
 
 #include <chrono>
 #include <stdexcept>
 
 #include "cases.h"
+#include "fcl_bvh.h"
 #include "mddual/error.h"
 #include "mddual/planning/arm_checkers.h"
 #include "mddual/planning/fcl_checkers.h"
@@ -26,9 +30,16 @@ const std::vector<std::string>& checkerNames() {
   return names;
 }
 
+bool meshFamily(const std::string& family) {
+  return family == "obb-hierarchy" || family == "sliver-mesh";
+}
+
 const std::vector<std::string>& checkerNames(const std::string& family) {
   static const std::vector<std::string> arm = {"mdd", "fcl", "hull-cast", "hull-cast-edge"};
-  return family == "arm-rotating-link" ? arm : checkerNames();
+  static const std::vector<std::string> mesh = {
+      "mdd", "fcl", "fcl-continuous", "fcl-continuous-obb", "fcl-continuous-rss", "hull-cast", "hull-cast-edge"};
+  if (family == "arm-rotating-link") return arm;
+  return meshFamily(family) ? mesh : checkerNames();
 }
 
 namespace {
@@ -74,6 +85,9 @@ ob::SpaceInformationPtr makeChecker(const std::string& checker, const Scene& s) 
       si->setMotionValidator(std::make_shared<ob::DiscreteMotionValidator>(si));
     } else if (checker == "fcl-continuous") {
       si->setMotionValidator(std::make_shared<FclContinuousMotionValidator>(si, s.space, fcl));
+    } else if (checker == "fcl-continuous-obb" || checker == "fcl-continuous-rss") {
+      si->setMotionValidator(
+          makeFclBvhContinuous(si, s, checker == "fcl-continuous-obb" ? FclBvh::kObb : FclBvh::kRss));
     } else if (checker == "hull-cast" || checker == "hull-cast-edge") {
       auto hull = std::make_shared<HullCastScene>(s.robot, s.world);
       si->setMotionValidator(std::make_shared<HullCastMotionValidator>(si, s.space, hull, castSegments(checker)));

@@ -256,7 +256,7 @@ void bindArms(py::module_& m) {
   py::class_<scene::MbmProblemFiles>(m, "ArmProblemFiles",
                                      "One MotionBenchMaker problem: its number, sceneNNNN.yaml and requestNNNN.yaml.")
       .def(py::init([](std::filesystem::path scene, std::filesystem::path request, int number) {
-             return scene::MbmProblemFiles{number, std::move(scene), std::move(request)};
+             return scene::MbmProblemFiles{number, std::move(scene), std::move(request), {}};
            }),
            py::arg("scene"), py::arg("request"), py::arg("number") = 0)
       .def_readonly("number", &scene::MbmProblemFiles::number)

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -57,9 +58,11 @@ TEST(CliBenchArms, PlansAProblemDirectoryWithEveryChecker) {
   TempDir dir;
   const fs::path problems = copyProblems(fs::path(dir.path()) / "shelf", "bookshelf_thin");
   const fs::path out = fs::path(dir.path()) / "out";
-  const CliRun run = runCli({"bench", problems.string(), "--robot", (kArm7 / "arm7.urdf").string(), "--srdf",
+  const fs::path paths = fs::path(dir.path()) / "paths";
+  // The directory as shell completion gives it, with a trailing '/'.
+  const CliRun run = runCli({"bench", problems.string() + "/", "--robot", (kArm7 / "arm7.urdf").string(), "--srdf",
                              (kArm7 / "arm7.srdf").string(), "--planners", "RRTConnectkConfigDefault", "--runs", "1",
-                             "--time-limit", "5", "--output", out.string()});
+                             "--time-limit", "5", "--output", out.string(), "--save-paths", paths.string()});
   ASSERT_EQ(run.exit_code, 0) << run.err << run.out;
   for (const char* problem : {"0001", "0002"}) {
     for (const std::string& checker : kArmCheckers) {
@@ -89,6 +92,25 @@ TEST(CliBenchArms, PlansAProblemDirectoryWithEveryChecker) {
             "0");
   EXPECT_NE(run.out.find("| shelf | RRTConnectkConfigDefault | mdd | 2 |"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("| shelf | RRTConnectkConfigDefault | fcl-fine | 2 |"), std::string::npos) << run.out;
+  // --save-paths: one trajectory per exact solution, named by its problem,
+  // checker, planner and run, "-invalid" on those the verification refused.
+  int saved = 0, saved_invalid = 0;
+  for (const auto& entry : fs::directory_iterator(paths)) {
+    const std::string name = entry.path().filename().string();
+    ++saved;
+    saved_invalid += name.find("-invalid.yaml") != std::string::npos ? 1 : 0;
+    EXPECT_EQ(name.rfind("shelf-000", 0), 0u) << name;
+    std::ifstream in(entry.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("joint_names: [joint1, joint2, joint3, joint4, joint5, joint6, joint7]"), std::string::npos)
+        << name;
+  }
+  EXPECT_TRUE(fs::is_regular_file(paths / "shelf-0001-mdd-RRTConnectkConfigDefault-0.yaml"));
+  EXPECT_EQ(std::to_string(saved),
+            sqlCount(db,
+                     "select count(*) from runs where solved = 1 and (approximate_solution is null or "
+                     "approximate_solution = 0)"));
+  EXPECT_EQ(std::to_string(saved_invalid), sqlCount(db, "select count(*) from runs where invalid_solution = 1"));
 }
 
 TEST(CliBenchArms, BadProblemsAndFlagsFailWithOneClearLine) {

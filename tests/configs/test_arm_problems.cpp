@@ -2,12 +2,16 @@
 // scripts/arm_problems.py): six sets of MotionBenchMaker problems per robot;
 // every problem loads, its start and goal are within the joint limits and
 // free by the exact check, and its straight edge is blocked in at least some
-// problems of each set (the sets are not trivial). And the Panda's SRDF
+// problems of each set (the sets are not trivial); every problem has a
+// witness path (trajectoryNNNN.yaml, scripts/arm-witnesses.sh) from its start
+// to its goal that the certified motion check passes, so every problem is
+// solvable. And the Panda's SRDF
 // (scripts/panda_configs.py): the pairs it disables beyond the adjacent ones
 // touch in every sampled configuration, and every pair it checks is free in
 // some.
 #include <gtest/gtest.h>
 
+#include <ompl/base/ScopedState.h>
 #include <cstdio>
 #include <ostream>
 #include <random>
@@ -37,12 +41,13 @@ std::ostream& operator<<(std::ostream& out, const ArmSets& s) {
 
 class ArmProblems : public ::testing::TestWithParam<ArmSets> {};
 
+const std::vector<std::string> kSets = {"bookshelf_thin",   "cage",      "box", "table_pick",
+                                        "table_under_pick", "table_bars"};
+
 TEST_P(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
   const ArmSets& arm = GetParam();
   const ArmRobot robot = loadArmRobot(arm.dir / (arm.name + ".urdf"), arm.dir / (arm.name + ".srdf"));
-  const std::vector<std::string> sets = {"bookshelf_thin",   "cage",      "box", "table_pick",
-                                         "table_under_pick", "table_bars"};
-  for (const std::string& set : sets) {
+  for (const std::string& set : kSets) {
     const std::vector<scene::MbmProblemFiles> problems = scene::listMbmProblems(arm.dir / "problems" / set);
     EXPECT_GE(problems.size(), arm.problems) << set;
     int blocked = 0;
@@ -59,6 +64,67 @@ TEST_P(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
     std::printf("%s/%s: %zu problems, %d with the straight edge blocked\n", arm.name.c_str(), set.c_str(),
                 problems.size(), blocked);
   }
+}
+
+TEST_P(ArmProblems, EveryProblemHasACertifiedWitnessPath) {
+  const ArmSets& arm = GetParam();
+  const ArmRobot robot = loadArmRobot(arm.dir / (arm.name + ".urdf"), arm.dir / (arm.name + ".srdf"));
+  for (const std::string& set : kSets) {
+    int edges = 0;
+    for (const scene::MbmProblemFiles& files : scene::listMbmProblems(arm.dir / "problems" / set)) {
+      const ArmProblem p = loadArmProblem(robot, files);
+      ASSERT_FALSE(files.trajectory.empty()) << p.name << ": no witness path (run scripts/arm-witnesses.sh)";
+      const std::vector<std::vector<double>> states =
+          armTrajectoryStates(p, scene::loadMbmTrajectory(files.trajectory), files.trajectory.string());
+      ASSERT_GE(states.size(), 2u) << p.name;
+      for (int v : p.space->variables()) {
+        const auto k = static_cast<std::size_t>(v);
+        EXPECT_NEAR(states.front()[k], p.start[k], 1e-12) << p.name << ": the witness does not begin at the start";
+        EXPECT_NEAR(states.back()[k], p.goal[k], 1e-12) << p.name << ": the witness does not end at the goal";
+      }
+      // Each edge as OMPL interpolates it (ArmSpace::edge), certified free.
+      ompl::base::ScopedState<> s0(p.space->stateSpace()), s1(p.space->stateSpace());
+      std::vector<double> q0(p.start.size()), q1(p.start.size());
+      for (std::size_t i = 0; i + 1 < states.size(); ++i, ++edges) {
+        p.space->setState(s0.get(), states[i].data());
+        p.space->setState(s1.get(), states[i + 1].data());
+        p.space->edge(s0.get(), s1.get(), q0.data(), q1.data());
+        EXPECT_FALSE(p.scene->checkEdge(q0.data(), q1.data(), EdgeQuery::kValidity).collides)
+            << p.name << ": witness edge " << i << " collides";
+      }
+    }
+    std::printf("%s/%s: every witness path certified free (%d edges)\n", arm.name.c_str(), set.c_str(), edges);
+  }
+}
+
+TEST(ArmWitness, BadTrajectoriesNameTheFileAndTheJoint) {
+  const ArmRobot robot = loadArmRobot(kArm7Dir / "arm7.urdf", kArm7Dir / "arm7.srdf");
+  const ArmProblem p = loadArmProblem(robot, scene::listMbmProblems(kArm7Dir / "problems" / "cage").front());
+  const std::vector<std::string> arm = {"joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "joint7"};
+  const std::vector<double> zero(7, 0.0);
+  auto expectError = [&](const scene::MbmTrajectory& t, const std::string& part) {
+    try {
+      armTrajectoryStates(p, t, "t.yaml");
+      ADD_FAILURE() << "no error for " << part;
+    } catch (const scene::SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  std::vector<std::string> with_finger = arm;
+  with_finger.push_back("finger_left_joint");
+  expectError({with_finger, {std::vector<double>(8, 0.0)}},
+              "t.yaml: joint_names: joint 'finger_left_joint' is not in group 'arm'");
+  expectError({{"joint1", "joint2"}, {{0.0, 0.0}}}, "t.yaml: joint_names: lacks joint 'joint3' of group 'arm'");
+  std::vector<double> beyond = zero;
+  beyond[3] = 0.5;  // joint4's limits are [-3, -0.07]
+  expectError({arm, {beyond}}, "t.yaml: points[0]: joint 'joint4' = 0.500000 is outside its limits");
+  // The joints in another order are read by name.
+  std::vector<std::string> reversed(arm.rbegin(), arm.rend());
+  const std::vector<double> q = {0.7, 0.6, 0.5, -0.4, 0.3, 0.2, 0.1};
+  const std::vector<std::vector<double>> states = armTrajectoryStates(p, {reversed, {q}}, "t.yaml");
+  const scene::MbmTrajectory back = armTrajectory(p, states);
+  EXPECT_EQ(back.joint_names, arm);
+  EXPECT_EQ(back.points[0], std::vector<double>(q.rbegin(), q.rend()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Arms, ArmProblems,

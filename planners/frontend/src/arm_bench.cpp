@@ -95,6 +95,14 @@ Verdict verify(const ArmProblem& p, const ArmScene& exact, const FclArmScene& fc
   return v;
 }
 
+/// Writes a solution path as a trajectory of p's group.
+void savePath(const ArmProblem& p, const ArmSpace& space, const og::PathGeometric& path,
+              const std::filesystem::path& file, const std::vector<std::string>& comment) {
+  std::vector<std::vector<double>> states;
+  for (unsigned int i = 0; i < path.getStateCount(); ++i) states.push_back(space.configuration(path.getState(i)));
+  scene::saveMbmTrajectory(file, armTrajectory(p, states), comment);
+}
+
 }  // namespace
 
 std::string plannerFromPlannerId(const std::string& planner_id) {
@@ -117,6 +125,12 @@ std::string plannerFromPlannerId(const std::string& planner_id) {
     name.erase(cut);
   }
   return {};
+}
+
+std::string problemDirName(const std::filesystem::path& problem_dir) {
+  std::filesystem::path dir = std::filesystem::absolute(problem_dir).lexically_normal();
+  if (dir.filename().empty()) dir = dir.parent_path();  // a trailing separator
+  return dir.filename().string();
 }
 
 std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesystem::path& problem_dir,
@@ -154,7 +168,8 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
     }
   }
   std::filesystem::create_directories(options.output_dir);
-  const std::string config = std::filesystem::absolute(problem_dir).lexically_normal().filename().string();
+  if (!options.paths_dir.empty()) std::filesystem::create_directories(options.paths_dir);
+  const std::string config = problemDirName(problem_dir);
 
   std::vector<ArmBenchLog> logs;
   for (std::size_t i = 0; i < problems.size(); ++i) {
@@ -222,6 +237,13 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
         run["invalid by mdd BOOLEAN"] = flag(exact && v.invalid_mdd);
         run["invalid by fcl BOOLEAN"] = flag(exact && v.invalid_fcl);
         run["verification time REAL"] = real(v.seconds);
+        if (exact && !options.paths_dir.empty()) {
+          savePath(p, *setup.space, setup.ss->getSolutionPath(),
+                   options.paths_dir / (config + "-" + number + "-" + checker + "-" + planner->getName() + "-" +
+                                        run["run index INTEGER"] + (invalid ? "-invalid" : "") + ".yaml"),
+                   {p.files.request.filename().string() + ": " + planner->getName() + " with " + checker + ", run " +
+                    run["run index INTEGER"] + (invalid ? ", invalid" : ", verified")});
+        }
         log.solved += exact ? 1 : 0;
         log.verified += verified ? 1 : 0;
         log.invalid += invalid ? 1 : 0;

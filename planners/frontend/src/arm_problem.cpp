@@ -102,4 +102,45 @@ ArmProblem loadArmProblem(const ArmRobot& robot, const scene::MbmProblemFiles& f
   return p;
 }
 
+std::vector<std::vector<double>> armTrajectoryStates(const ArmProblem& p, const scene::MbmTrajectory& trajectory,
+                                                     const std::string& what) {
+  const scene::RobotModel& model = p.space->model();
+  const std::vector<int>& group = p.space->variables();
+  for (const std::string& name : trajectory.joint_names) {
+    const int j = model.findJoint(name);
+    const bool in_group = j >= 0 && !model.joint(j).mimic &&
+                          std::find(group.begin(), group.end(), model.joint(j).variable) != group.end();
+    if (!in_group)
+      throw scene::SceneError(what + ": joint_names: joint " + quote(name) + " is not in group " + quote(p.group));
+  }
+  for (int v : group) {
+    const std::string& name = model.joint(model.variableJoint(v)).name;
+    if (std::find(trajectory.joint_names.begin(), trajectory.joint_names.end(), name) == trajectory.joint_names.end()) {
+      throw scene::SceneError(what + ": joint_names: lacks joint " + quote(name) + " of group " + quote(p.group));
+    }
+  }
+  std::vector<std::vector<double>> states;
+  for (std::size_t i = 0; i < trajectory.points.size(); ++i) {
+    std::vector<std::pair<std::string, double>> values;
+    for (std::size_t k = 0; k < trajectory.joint_names.size(); ++k) {
+      values.emplace_back(trajectory.joint_names[k], trajectory.points[i][k]);
+    }
+    const std::string where = what + ": points[" + std::to_string(i) + "]";
+    states.push_back(scene::applyJointValues(model, p.start, values, where));
+    requireWithinLimits(model, group, states.back(), where);
+  }
+  return states;
+}
+
+scene::MbmTrajectory armTrajectory(const ArmProblem& p, const std::vector<std::vector<double>>& states) {
+  scene::MbmTrajectory t;
+  const scene::RobotModel& model = p.space->model();
+  for (int v : p.space->variables()) t.joint_names.push_back(model.joint(model.variableJoint(v)).name);
+  for (const std::vector<double>& q : states) {
+    std::vector<double>& point = t.points.emplace_back();
+    for (int v : p.space->variables()) point.push_back(q[static_cast<std::size_t>(v)]);
+  }
+  return t;
+}
+
 }  // namespace mddual::planning

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <map>
 #include <regex>
 
@@ -224,11 +227,21 @@ void addMesh(const Field& mesh, const Eigen::Isometry3d& X_WM, const LoadOptions
   if (warnings != nullptr) warnings->insert(warnings->end(), info.warnings.begin(), info.warnings.end());
 }
 
+/// The shortest decimal text that reads back as x (at most 17 digits).
+std::string shortestText(double x) {
+  char text[32];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, x);
+    if (std::strtod(text, nullptr) == x) break;
+  }
+  return text;
+}
+
 }  // namespace
 
 std::vector<MbmProblemFiles> listMbmProblems(const std::filesystem::path& dir) {
   if (!std::filesystem::is_directory(dir)) throw SceneError(display(dir) + ": not a directory");
-  static const std::regex kName("(scene|request)(\\d+)\\.yaml");
+  static const std::regex kName("(scene|request|trajectory)(\\d+)\\.yaml");
   std::map<int, MbmProblemFiles> found;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     std::smatch m;
@@ -237,10 +250,14 @@ std::vector<MbmProblemFiles> listMbmProblems(const std::filesystem::path& dir) {
     const int number = std::stoi(m[2].str());
     MbmProblemFiles& p = found[number];
     p.number = number;
-    (m[1].str() == "scene" ? p.scene : p.request) = entry.path();
+    const std::string kind = m[1].str();
+    (kind == "scene" ? p.scene : kind == "request" ? p.request : p.trajectory) = entry.path();
   }
   std::vector<MbmProblemFiles> out;
   for (auto& [number, p] : found) {
+    if (p.scene.empty() && p.request.empty()) {
+      throw SceneError(display(p.trajectory) + ": no scene and request files for this trajectory");
+    }
     if (p.scene.empty()) throw SceneError(display(p.request) + ": no scene file for this request");
     if (p.request.empty()) throw SceneError(display(p.scene) + ": no request file for this scene");
     out.push_back(p);
@@ -269,6 +286,49 @@ MbmRequest loadMbmRequest(const std::filesystem::path& file) {
     r.goal.push_back(g);
   }
   return r;
+}
+
+MbmTrajectory loadMbmTrajectory(const std::filesystem::path& file) {
+  const Field doc = loadYaml(file);
+  const Field jt = doc["joint_trajectory"];
+  MbmTrajectory t;
+  t.joint_names = jt["joint_names"].texts();
+  if (t.joint_names.empty()) jt["joint_names"].fail("missing (a trajectory names its joints)");
+  for (std::size_t i = 0; i < t.joint_names.size(); ++i) {
+    if (std::find(t.joint_names.begin(), t.joint_names.begin() + static_cast<std::ptrdiff_t>(i), t.joint_names[i]) !=
+        t.joint_names.begin() + static_cast<std::ptrdiff_t>(i)) {
+      jt["joint_names"][i].fail("repeats joint " + quote(t.joint_names[i]));
+    }
+  }
+  const Field points = jt["points"];
+  if (points.size() == 0) points.fail("missing (a trajectory needs at least one point)");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Field positions = points[i]["positions"];
+    t.points.push_back(positions.numbers());
+    if (t.points.back().size() != t.joint_names.size()) {
+      positions.fail("has " + std::to_string(t.points.back().size()) + " values for " +
+                     std::to_string(t.joint_names.size()) + " joints");
+    }
+  }
+  return t;
+}
+
+void saveMbmTrajectory(const std::filesystem::path& file, const MbmTrajectory& trajectory,
+                       const std::vector<std::string>& comment) {
+  YAML::Emitter out;
+  out << YAML::BeginMap << YAML::Key << "joint_trajectory" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "joint_names" << YAML::Value << YAML::Flow << trajectory.joint_names;
+  out << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
+  for (const std::vector<double>& point : trajectory.points) {
+    std::vector<std::string> values;
+    for (double x : point) values.push_back(shortestText(x));
+    out << YAML::BeginMap << YAML::Key << "positions" << YAML::Value << YAML::Flow << values << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap << YAML::EndMap;
+  std::ofstream f(file);
+  for (const std::string& line : comment) f << "# " << line << "\n";
+  f << out.c_str() << "\n";
+  if (!f.flush()) throw SceneError(display(file) + ": cannot be written");
 }
 
 std::vector<double> applyJointValues(const RobotModel& model, std::vector<double> base,

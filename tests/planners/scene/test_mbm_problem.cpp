@@ -1,7 +1,8 @@
 // MotionBenchMaker problems: scenes and requests as MotionBenchMaker writes
 // them (sequences for points, primitive types by name), the map and number
 // spellings MoveIt's messages also use, frames, the allowed collision
-// matrix, and every malformed field named with its file and path.
+// matrix, trajectories (witness paths) read back exactly, and every
+// malformed field named with its file and path.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -205,16 +206,52 @@ TEST(MbmProblem, ListsTheProblemsOfADirectory) {
   dir.write("p/request0002.yaml", kRequest);
   dir.write("p/scene0001.yaml", kScene);
   dir.write("p/request0001.yaml", kRequest);
+  dir.write("p/trajectory0002.yaml", "joint_trajectory: {}");
   dir.write("p/notes.txt", "other files are ignored");
   const std::vector<MbmProblemFiles> problems = listMbmProblems(dir.path() / "p");
   ASSERT_EQ(problems.size(), 2u);
   EXPECT_EQ(problems[0].number, 1);
   EXPECT_EQ(problems[1].request.filename(), "request0002.yaml");
+  EXPECT_TRUE(problems[0].trajectory.empty());
+  EXPECT_EQ(problems[1].trajectory.filename(), "trajectory0002.yaml");
+  dir.write("p/trajectory0007.yaml", "joint_trajectory: {}");
+  expectSceneError([&] { listMbmProblems(dir.path() / "p"); }, {"trajectory0007.yaml", "no scene and request"});
+  std::filesystem::remove(dir.path() / "p" / "trajectory0007.yaml");
   dir.write("p/scene0003.yaml", kScene);
   expectSceneError([&] { listMbmProblems(dir.path() / "p"); }, {"scene0003.yaml", "no request file"});
   expectSceneError([&] { listMbmProblems(dir.path() / "empty_dir_missing"); }, {"not a directory"});
   std::filesystem::create_directories(dir.path() / "none");
   expectSceneError([&] { listMbmProblems(dir.path() / "none"); }, {"no problems"});
+}
+
+TEST(MbmProblem, TrajectoriesReadBackExactly) {
+  TempDir dir;
+  MbmTrajectory t;
+  t.joint_names = {"joint1", "joint 2"};  // a name YAML must quote
+  // 0.1 and -1.307065 need few digits; 1/3 and the smallest normal need 17.
+  t.points = {{0.1, -1.307065}, {1.0 / 3.0, std::numeric_limits<double>::min()}, {-0.0, 2.0 * kPi}};
+  const std::filesystem::path file = dir.path() / "trajectory0001.yaml";
+  saveMbmTrajectory(file, t, {"a witness", "second line"});
+  const MbmTrajectory back = loadMbmTrajectory(file);
+  EXPECT_EQ(back.joint_names, t.joint_names);
+  ASSERT_EQ(back.points.size(), t.points.size());
+  for (std::size_t i = 0; i < t.points.size(); ++i) {
+    ASSERT_EQ(back.points[i].size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(back.points[i][k], t.points[i][k]) << i << " " << k;
+  }
+  // MoveIt's own spelling, with times and velocities (ignored).
+  const MbmTrajectory moveit = loadMbmTrajectory(dir.write("t.yaml", R"(joint_trajectory:
+  header: {frame_id: world}
+  joint_names: [joint1, joint2]
+  points:
+    - positions: [0, 0.5]
+      velocities: [0, 0]
+      time_from_start: {secs: 0, nsecs: 0}
+    - positions: [1, -0.5]
+multi_dof_joint_trajectory: {}
+)"));
+  ASSERT_EQ(moveit.points.size(), 2u);
+  EXPECT_EQ(moveit.points[1][1], -0.5);
 }
 
 TEST(MbmProblemErrors, NameTheFileAndTheField) {
@@ -252,6 +289,17 @@ TEST(MbmProblemErrors, NameTheFileAndTheField) {
   expectSceneError([&] { request(replaced(kRequest, "position: 1.0", "position: .nan")); },
                    {"goal_constraints[0].joint_constraints[0].position: is not finite"});
   expectSceneError([&] { request("group_name: arm\n"); }, {"goal_constraints: missing"});
+  auto trajectory = [&](const std::string& text) { return loadMbmTrajectory(dir.write("trajectory0009.yaml", text)); };
+  expectSceneError([&] { trajectory("points: []\n"); }, {"trajectory0009.yaml: joint_trajectory.joint_names: missing"});
+  expectSceneError([&] { trajectory("joint_trajectory: {joint_names: [a, b, a], points: [{positions: [0, 0, 0]}]}"); },
+                   {"joint_trajectory.joint_names[2]: repeats joint 'a'"});
+  expectSceneError([&] { trajectory("joint_trajectory: {joint_names: [a, b], points: []}"); },
+                   {"joint_trajectory.points: missing (a trajectory needs at least one point)"});
+  expectSceneError(
+      [&] { trajectory("joint_trajectory: {joint_names: [a, b], points: [{positions: [0, 1]}, {positions: [1]}]}"); },
+      {"joint_trajectory.points[1].positions: has 1 values for 2 joints"});
+  expectSceneError([&] { trajectory("joint_trajectory: {joint_names: [a, b], points: [{positions: [0, .inf]}]}"); },
+                   {"joint_trajectory.points[0].positions[1]: is not finite"});
   expectSceneError(
       [&] {
         applyJointValues(model, model.defaultConfiguration(), {{"wrist", 0.0}}, "x.yaml: start");

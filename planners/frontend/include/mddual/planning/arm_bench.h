@@ -28,6 +28,11 @@
 // verify_resolution radians apart in every joint. Invalid when either finds
 // a contact.
 //
+// Paths: with ArmBenchOptions::paths_dir, every exact solution is also
+// written there as a trajectory (scene::saveMbmTrajectory, the group's
+// joints): "<dir>-<NNNN>-<checker>-<planner>-<run>.yaml", with "-invalid"
+// before ".yaml" when the verification found a contact.
+//
 // Sharding: problem k of the directory (in number order) belongs to shard k
 // mod N.
 #pragma once
@@ -49,6 +54,10 @@ namespace mddual::planning {
 /// a plain OMPL name is itself. Empty when no planner matches.
 std::string plannerFromPlannerId(const std::string& planner_id);
 
+/// The name a problem directory gives its config, logs and output folder:
+/// its last component ("problems/cage/" and "problems/cage/." are "cage").
+std::string problemDirName(const std::filesystem::path& problem_dir);
+
 /// Options of runArmBench.
 struct ArmBenchOptions {
   /// Names of armCheckers() entries; by default all of them, in the table's order.
@@ -63,10 +72,12 @@ struct ArmBenchOptions {
   int problems = 0;
   BenchShard shard;
   /// fcl-fine's longest valid segment (joint-space distance, radians).
-  double fine_resolution = 1.0 / 32.0;
+  double fine_resolution = kDefaultFineResolution;
   /// The dense FCL verification's largest step per joint (radians).
   double verify_resolution = 1e-3;
   std::filesystem::path output_dir;
+  /// Where the solution paths go (see the file comment); empty: nowhere.
+  std::filesystem::path paths_dir;
   ArmProblemOptions problem;
 };
 

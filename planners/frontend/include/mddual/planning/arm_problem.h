@@ -64,4 +64,15 @@ struct ArmProblemOptions {
 ArmProblem loadArmProblem(const ArmRobot& robot, const scene::MbmProblemFiles& files,
                           const ArmProblemOptions& options = {});
 
+/// A trajectory's points as full configurations of p: p's start with the
+/// trajectory's values set, one per point. Throws SceneError naming `what`
+/// and the joint for a joint outside p's group, a group joint the
+/// trajectory lacks, or a value outside its joint's limits.
+std::vector<std::vector<double>> armTrajectoryStates(const ArmProblem& p, const scene::MbmTrajectory& trajectory,
+                                                     const std::string& what);
+
+/// Full configurations of p as a trajectory over its group's joints, in the
+/// group's order.
+scene::MbmTrajectory armTrajectory(const ArmProblem& p, const std::vector<std::vector<double>>& states);
+
 }  // namespace mddual::planning

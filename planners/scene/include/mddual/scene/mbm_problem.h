@@ -13,6 +13,11 @@
 // sequences [x, y, z] or maps {x, y, z}; quaternions [x, y, z, w] or maps.
 // From a request: group_name, planner_id, allowed_planning_time,
 // start_state.joint_state and goal_constraints[0].joint_constraints.
+// A trajectory file (trajectoryNNNN.yaml beside a problem, such as the
+// witness paths of the project's problem sets, or a path `mddual bench
+// --save-paths` wrote) is a moveit_msgs/RobotTrajectory: joint_trajectory.
+// joint_names and joint_trajectory.points[].positions; times and velocities
+// are ignored.
 // Unknown fields are ignored; a missing or malformed field is a SceneError
 // naming the file and the field's path (world.collision_objects[2].
 // primitives[0].dimensions).
@@ -72,21 +77,41 @@ struct MbmScene {
   std::vector<std::string> warnings;
 };
 
-/// One problem of a directory: its two files and its number.
+/// A joint trajectory: the values of joint_names at each point.
+struct MbmTrajectory {
+  std::vector<std::string> joint_names;
+  std::vector<std::vector<double>> points;  ///< each as long as joint_names
+};
+
+/// One problem of a directory: its files and its number.
 struct MbmProblemFiles {
   int number = 0;
   std::filesystem::path scene;
   std::filesystem::path request;
+  std::filesystem::path trajectory;  ///< trajectoryNNNN.yaml; empty when there is none
 };
 
 /// The problems of a MotionBenchMaker directory (every sceneNNNN.yaml with its
-/// requestNNNN.yaml), by number. Throws SceneError naming the directory when
-/// it does not exist or holds no problem, and naming the file when a scene
-/// has no request or a request no scene.
+/// requestNNNN.yaml and its trajectoryNNNN.yaml if any), by number. Throws
+/// SceneError naming the directory when it does not exist or holds no
+/// problem, and naming the file when a scene has no request or a request or
+/// a trajectory no scene.
 std::vector<MbmProblemFiles> listMbmProblems(const std::filesystem::path& dir);
 
 /// Reads a request. Throws SceneError naming the file and the field.
 MbmRequest loadMbmRequest(const std::filesystem::path& file);
+
+/// Reads a trajectory. Throws SceneError naming the file and the field for a
+/// missing or malformed field, no point, a point whose length is not the
+/// number of names, a repeated name or a value that is not finite.
+MbmTrajectory loadMbmTrajectory(const std::filesystem::path& file);
+
+/// Writes a trajectory as loadMbmTrajectory reads it (each value in the
+/// fewest digits that read back exactly), after `comment` lines
+/// (each prefixed with "# "). Throws SceneError when the file cannot be
+/// written.
+void saveMbmTrajectory(const std::filesystem::path& file, const MbmTrajectory& trajectory,
+                       const std::vector<std::string>& comment = {});
 
 /// Reads a scene and builds its world against `model` (link frames, joint
 /// names of robot_state, the matrix's link names). Throws SceneError naming

@@ -122,6 +122,10 @@ void addRigidChecker(const RigidChecker& checker);
 
 // ---- Arms (MotionBenchMaker problems) -------------------------------------------
 
+/// fcl-fine's default longest valid segment (joint-space distance, radians):
+/// the 1/32 per unit of joint-space distance VAMP samples its edges at.
+inline constexpr double kDefaultFineResolution = 1.0 / 32.0;
+
 /// What an arm checker is installed on.
 struct ArmCheckerContext {
   ompl::base::SpaceInformationPtr si;     ///< the checkers go here
@@ -131,7 +135,7 @@ struct ArmCheckerContext {
   /// bench's verification uses it too).
   std::shared_ptr<const FclArmScene> fcl;
   /// fcl-fine's longest valid segment (joint-space distance, radians).
-  double fine_resolution = 1.0 / 32.0;
+  double fine_resolution = kDefaultFineResolution;
 };
 
 /// One entry of armCheckers().

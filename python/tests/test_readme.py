@@ -1,4 +1,4 @@
-"""The example in python/README.md runs and prints what its comments say."""
+"""The examples in python/README.md and the top README.md run and hold what their comments say."""
 
 import contextlib
 import io
@@ -62,3 +62,14 @@ def test_readme_hull_cast_example_runs_and_prints_its_comments():
     with contextlib.redirect_stdout(out):
         exec(compile(block, str(README), "exec"), {"mddual": mddual, "np": np})
     assert out.getvalue().splitlines() == ["[ True]", "[ True] 50", "[False]"]
+
+
+def test_top_readme_example_holds_what_its_comment_says():
+    top = README.parent.parent / "README.md"
+    block = re.search(r"```python\n(.*?)```", top.read_text(), re.S).group(1)
+    names = {}
+    exec(compile(block, str(top), "exec"), names)
+    # The comment on its last line: r.status == "separated", r.distance == 2.0
+    comment = block.strip().splitlines()[-1].split("#", 1)[1]
+    for claim in comment.split(","):
+        assert eval(claim, names), claim

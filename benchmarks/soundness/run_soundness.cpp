@@ -3,6 +3,7 @@
 // (family, checker). scripts/run-soundness.sh runs it and files the table.
 //
 //   mddual_soundness [--edges N] [--seed S] [--out FILE] [--family NAME]...
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -35,12 +36,6 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-int usage(const char* message) {
-  std::cerr << "mddual_soundness: " << message
-            << "\nusage: mddual_soundness [--edges N] [--seed S] [--out FILE] [--family NAME]...\n";
-  return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -48,23 +43,14 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   std::string out_path;
   std::vector<std::string> families;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (i + 1 >= argc) return usage(("missing the value of " + arg).c_str());
-    const std::string value = argv[++i];
-    if (arg == "--edges") {
-      edges = std::atoi(value.c_str());
-    } else if (arg == "--seed") {
-      seed = std::strtoull(value.c_str(), nullptr, 10);
-    } else if (arg == "--out") {
-      out_path = value;
-    } else if (arg == "--family") {
-      families.push_back(value);
-    } else {
-      return usage(("unknown argument " + arg).c_str());
-    }
-  }
-  if (edges < 1) return usage("--edges must be at least 1");
+  CLI::App app("The soundness suite: every case family with every checker against its ground truth");
+  app.add_option("--edges", edges, "edges per family (default 200)")->check(CLI::Range(1, 1000000));
+  app.add_option("--seed", seed, "the families' seed (default 1)");
+  app.add_option("--out", out_path, "also write the Markdown table to FILE")->option_text("FILE");
+  app.add_option("--family", families, "only these families (repeatable; default: all)")
+      ->check(CLI::IsMember(familyNames()))
+      ->option_text("NAME");
+  CLI11_PARSE(app, argc, argv);
   if (families.empty()) families = familyNames();
 
   std::ostringstream table;

@@ -183,6 +183,23 @@ py::array_t<double> vectorArray(const std::vector<double>& q) {
   return py::array_t<double>(static_cast<py::ssize_t>(q.size()), q.data());
 }
 
+/// A trajectory file of the problem as full configurations, (K, n).
+FloatArray trajectoryArray(const ArmProblemHandle& p, const std::optional<std::filesystem::path>& path) {
+  const std::filesystem::path file = path ? *path : p.problem.files.trajectory;
+  if (file.empty()) {
+    throw scene::SceneError(p.problem.name + ": no trajectoryNNNN.yaml beside the problem; give the file's path");
+  }
+  const std::vector<std::vector<double>> states =
+      mp::armTrajectoryStates(p.problem, scene::loadMbmTrajectory(file), file.string());
+  const auto n = static_cast<py::ssize_t>(p.problem.start.size());
+  py::array_t<double> out({static_cast<py::ssize_t>(states.size()), n});
+  auto view = out.mutable_unchecked<2>();
+  for (py::ssize_t k = 0; k < view.shape(0); ++k) {
+    for (py::ssize_t i = 0; i < n; ++i) view(k, i) = states[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)];
+  }
+  return FloatArray(std::move(out));
+}
+
 }  // namespace
 
 void bindArms(py::module_& m) {
@@ -262,6 +279,13 @@ void bindArms(py::module_& m) {
       .def_readonly("number", &scene::MbmProblemFiles::number)
       .def_readonly("scene", &scene::MbmProblemFiles::scene)
       .def_readonly("request", &scene::MbmProblemFiles::request)
+      .def_property_readonly(
+          "trajectory",
+          [](const scene::MbmProblemFiles& f) -> std::optional<std::filesystem::path> {
+            if (f.trajectory.empty()) return std::nullopt;
+            return f.trajectory;
+          },
+          "trajectoryNNNN.yaml beside the problem (a witness path), or None")
       .def("__repr__", [](const scene::MbmProblemFiles& f) {
         return "ArmProblemFiles(number=" + std::to_string(f.number) + ", scene='" + f.scene.string() + "')";
       });
@@ -291,6 +315,11 @@ void bindArms(py::module_& m) {
                                return out;
                              })
       .def_property_readonly("warnings", [](const ArmProblemHandle& p) { return p.problem.warnings; })
+      .def("load_trajectory", &trajectoryArray, py::arg("path") = py::none(),
+           "A MoveIt trajectory (joint_trajectory.joint_names and points[].positions; by default the problem's "
+           "trajectoryNNNN.yaml) as full configurations, one row per point: the start's values with the "
+           "trajectory's group joints set. SceneError naming the file for a joint outside the group, a group "
+           "joint missing, a value outside its limits or a malformed field.")
       .def("__repr__", [](const ArmProblemHandle& p) {
         return "ArmProblem(name='" + p.problem.name + "', group='" + p.problem.group + "')";
       });

@@ -238,6 +238,30 @@ def test_problem_start_goal_and_group(problem, model):
     np.testing.assert_array_equal(again.goal, problem.goal)
 
 
+def test_witness_trajectory_is_certified_free(problem, tmp_path):
+    assert problem.files.trajectory.name == "trajectory0001.yaml"
+    Q = problem.load_trajectory()
+    assert Q.shape[1] == problem.scene.num_variables and Q.shape[0] >= 2
+    np.testing.assert_allclose(Q[0], problem.start, atol=1e-12)
+    np.testing.assert_allclose(Q[-1], problem.goal, atol=1e-12)
+    collides, _ = problem.scene.check_edges(Q[:-1], Q[1:])
+    assert not collides.any()
+    # A state through the base in the middle: that edge collides, the others not.
+    folded = problem.start.copy()
+    folded[[1, 3]] = [1.7, -3.0]
+    bad = tmp_path / "t.yaml"
+    names = ", ".join(problem.group_variable_names)
+    bad.write_text("joint_trajectory:\n  joint_names: [%s]\n  points:\n" % names +
+                   "".join("    - positions: [%s]\n" % ", ".join(repr(float(x)) for x in q[:7])
+                           for q in (Q[0], folded, Q[-1])))
+    B = problem.load_trajectory(bad)
+    np.testing.assert_array_equal(B[1], folded)
+    assert problem.scene.check_edges(B[:-1], B[1:])[0].all()
+    bad.write_text("joint_trajectory: {joint_names: [joint1], points: [{positions: [0]}]}")
+    with pytest.raises(mddual.SceneError, match="lacks joint 'joint2' of group 'arm'"):
+        problem.load_trajectory(bad)
+
+
 def test_collides_and_clearance_agree(problem):
     scene = problem.scene
     Q = random_configurations(problem, np.random.default_rng(11), 300)

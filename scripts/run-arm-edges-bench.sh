@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # One arm motion check and one state check, mdd's certified check against
 # OMPL's DiscreteMotionValidator with FCL at its default resolution (fcl) and
-# with segments of at most 1/32 rad (fcl-fine), on the same link pairs, per problem set of configs/arm7 (mddual_bench_arm_edges:
+# with segments of at most 1/32 rad (fcl-fine), on the same link pairs, per problem set of configs/ROBOT (mddual_bench_arm_edges:
 # edges drawn as RRT-Connect draws them, the fastest of the passes counts).
 # Builds the benchmark (Release, build/release) and writes
-# docs/results/arm-edges.md with this command and the build.
+# docs/results/arm-edges.md (arm7) or docs/results/panda-edges.md with this
+# command and the build.
 #
 #   scripts/run-arm-edges-bench.sh [SET ...]
 #
+# MDDUAL_ARM_ROBOT (default arm7; or panda) the robot,
 # MDDUAL_ARM_PROBLEMS (default 2) problems per set, MDDUAL_ARM_EDGES (default
 # 150) edges per problem, MDDUAL_ARM_PASSES (default 3) timed passes;
 # MDDUAL_JOBS the build's parallelism.
@@ -19,12 +21,19 @@ problems="${MDDUAL_ARM_PROBLEMS:-2}"
 edges="${MDDUAL_ARM_EDGES:-150}"
 passes="${MDDUAL_ARM_PASSES:-3}"
 jobs="${MDDUAL_JOBS:-$(nproc)}"
+robot="${MDDUAL_ARM_ROBOT:-arm7}"
+[ -d "configs/$robot/problems" ] || { echo "run-arm-edges-bench: no configs/$robot/problems" >&2; exit 2; }
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j "$jobs" --target mddual_bench_arm_edges >/dev/null
 out=docs/results/arm-edges.md
-command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_EDGES=$edges MDDUAL_ARM_PASSES=$passes ./scripts/run-arm-edges-bench.sh ${*}"
+robot_env=""
+if [ "$robot" != arm7 ]; then
+  out="docs/results/$robot-edges.md"
+  robot_env="MDDUAL_ARM_ROBOT=$robot "
+fi
+command="${robot_env}MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_EDGES=$edges MDDUAL_ARM_PASSES=$passes ./scripts/run-arm-edges-bench.sh ${*}"
 {
-  echo "# arm7: one certified motion check against FCL's discrete ones"
+  echo "# $robot: one certified motion check against FCL's discrete ones"
   echo
   echo "Made by \`${command% }\` at $(git rev-parse --short HEAD) on $(date -u +%Y-%m-%d)," \
     "$(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'))."
@@ -40,8 +49,8 @@ command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_EDGES=$edges MDDUAL_ARM_PASSES
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 } > "$out"
 for s in "${sets[@]}"; do
-  ./build/release/benchmarks/planning/mddual_bench_arm_edges "configs/arm7/problems/$s" \
-    --robot configs/arm7/arm7.urdf --srdf configs/arm7/arm7.srdf --problems "$problems" --edges "$edges" \
+  ./build/release/benchmarks/planning/mddual_bench_arm_edges "configs/$robot/problems/$s" \
+    --robot "configs/$robot/$robot.urdf" --srdf "configs/$robot/$robot.srdf" --problems "$problems" --edges "$edges" \
     --passes "$passes" | grep '^| all ' | sed "s/^| all /| $s /" >> "$out"
 done
 echo "run-arm-edges-bench: $out"

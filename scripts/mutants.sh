@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Mutation testing with hand-written mutants: each scripts/mutants/*.patch is
-# one small wrong change to the core (lib/) or the OMPL layer (planners/),
-# the kind of bug a test must catch (a flipped comparison, a wrong sign, a
-# tolerance widened, an enlargement halved, a check removed). For each one
+# one small wrong change to the core (lib/), the planning layers
+# (planners/) or the soundness suite's cases (benchmarks/soundness/), the
+# kind of bug a test must catch (a flipped comparison, a wrong sign, a
+# tolerance widened, an enlargement halved, a check removed, a case that no
+# longer has the geometry it is named for). For each one
 # the script applies it, rebuilds, runs the ctest subset named on the
 # patch's "# tests:" line (ctest arguments, e.g. "-L core") and reverts it;
 # a mutant is killed when at least one test fails, and survives otherwise.

@@ -1,5 +1,6 @@
 // Dense references of an edge's first contact, for the tests and the
 // soundness suite (benchmarks/soundness): plain sampling, no certificate.
+// Not part of the installed package (planners/CMakeLists.txt leaves it out).
 //
 //   - denseFirstContact(gap, speed, min_step): adaptive steps over t in
 //     [0, 1]. gap(t) is a lower bound of the distance between the moving

@@ -40,7 +40,8 @@ PRELUDE = ["<memory>", "<vector>", "<Eigen/Geometry>", "<ompl/base/spaces/RealVe
            "<mddual/scene/scene.h>"]
 
 FENCE = re.compile(r"^```(\w*)\s*$")
-PATH = re.compile(r"(?<![\w/.-])((?:configs|scripts|examples|python|docs)(?:/[\w.*-]+)*/?)")
+# A repository path, bare or after "./" ("python3" is not "python").
+PATH = re.compile(r"(?<![\w/.-])(?:\./)?((?:configs|scripts|examples|python|docs)(?:/[\w.*-]+)*/?)(?![\w])")
 
 
 def blocks(text, language):
@@ -89,14 +90,25 @@ def write_cpp(text, out):
 def check_sh(text, cli):
     errors = []
     helps = {}
+    checked = set()
+    if not blocks(text, "sh"):
+        errors.append("README.md: no sh block")
     for line, body in blocks(text, "sh"):
-        # Continuation lines joined, comments dropped.
-        commands = re.sub(r"\\\n\s*", " ", body)
-        for offset, command in enumerate(commands.splitlines()):
+        # Continuation lines joined (each command keeps its first line's
+        # number), comments dropped.
+        commands, pending, start = [], "", 0
+        for offset, part in enumerate(body.splitlines()):
+            start = start if pending else offset
+            pending += part[:-1] + " " if part.endswith("\\") else part
+            if not part.endswith("\\"):
+                commands.append((start, pending))
+                pending = ""
+        for offset, command in commands:
             command = command.split(" #")[0]
             for path in PATH.findall(command):
                 if "*" in path or "..." in path:
                     continue
+                checked.add(path)
                 if not os.path.exists(os.path.join(ROOT, path.rstrip("/"))):
                     errors.append("README.md:%d: %s does not exist" % (line + offset, path))
             m = re.search(r"cli/mddual\s+([\w-]+)(.*)", command)
@@ -116,7 +128,7 @@ def check_sh(text, cli):
             for flag in re.findall(r"(?<!\S)(--[\w-]+)", rest):
                 if flag not in helps[sub]:
                     errors.append("README.md:%d: `mddual %s` has no flag %s" % (line + offset, sub, flag))
-    return errors
+    return errors, checked
 
 
 def main():
@@ -134,9 +146,10 @@ def main():
         if not errors:
             print(";".join(written))
     else:
-        errors = check_sh(text, args.cli)
+        errors, checked = check_sh(text, args.cli)
         if not errors:
-            print("readme_blocks: every path and mddual flag of README.md's sh blocks exists")
+            print("readme_blocks: README.md's sh blocks: these paths exist: %s; every mddual flag too" %
+                  ", ".join(sorted(checked)))
     for e in errors:
         print(e, file=sys.stderr)
     return 1 if errors else 0

@@ -246,13 +246,13 @@ def test_witness_trajectory_is_certified_free(problem, tmp_path):
     np.testing.assert_allclose(Q[-1], problem.goal, atol=1e-12)
     collides, _ = problem.scene.check_edges(Q[:-1], Q[1:])
     assert not collides.any()
-    # A state through the base in the middle: that edge collides, the others not.
+    # A state through the base in the middle: both edges through it collide.
     folded = problem.start.copy()
     folded[[1, 3]] = [1.7, -3.0]
     bad = tmp_path / "t.yaml"
     names = ", ".join(problem.group_variable_names)
     bad.write_text("joint_trajectory:\n  joint_names: [%s]\n  points:\n" % names +
-                   "".join("    - positions: [%s]\n" % ", ".join(repr(float(x)) for x in q[:7])
+                   "".join("    - positions: [%s]\n" % ", ".join(repr(float(q[v])) for v in problem.group_variables)
                            for q in (Q[0], folded, Q[-1])))
     B = problem.load_trajectory(bad)
     np.testing.assert_array_equal(B[1], folded)

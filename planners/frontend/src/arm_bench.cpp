@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <set>
 
@@ -95,12 +96,22 @@ Verdict verify(const ArmProblem& p, const ArmScene& exact, const FclArmScene& fc
   return v;
 }
 
-/// Writes a solution path as a trajectory of p's group.
+/// Writes a solution path as a trajectory of p's group (continuous joints
+/// unwrapped along it: ArmSpace::pathConfigurations).
 void savePath(const ArmProblem& p, const ArmSpace& space, const og::PathGeometric& path,
               const std::filesystem::path& file, const std::vector<std::string>& comment) {
-  std::vector<std::vector<double>> states;
-  for (unsigned int i = 0; i < path.getStateCount(); ++i) states.push_back(space.configuration(path.getState(i)));
-  scene::saveMbmTrajectory(file, armTrajectory(p, states), comment);
+  std::vector<const ob::State*> states;
+  for (unsigned int i = 0; i < path.getStateCount(); ++i) states.push_back(path.getState(i));
+  scene::saveMbmTrajectory(file, armTrajectory(p, space.pathConfigurations(states)), comment);
+}
+
+/// A name as a file name part: characters other than letters, digits, '-',
+/// '_' and '.' become '_'.
+std::string fileNamePart(std::string name) {
+  for (char& c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.')) c = '_';
+  }
+  return name;
 }
 
 }  // namespace
@@ -216,6 +227,7 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
         const std::string where = p.files.request.string() + ": planner '" + name + "': ";
         bench.addPlanner(std::make_shared<MeteredPlanner>(planner, on_solved, where));
       }
+      std::exception_ptr save_error;  // the first --save-paths failure
       bench.setPreRunEvent([&](const ob::PlannerPtr&) {
         setup.resetCounts();
         solve_seconds = 0.0;
@@ -237,21 +249,29 @@ std::vector<ArmBenchLog> runArmBench(const ArmRobot& robot, const std::filesyste
         run["invalid by mdd BOOLEAN"] = flag(exact && v.invalid_mdd);
         run["invalid by fcl BOOLEAN"] = flag(exact && v.invalid_fcl);
         run["verification time REAL"] = real(v.seconds);
-        if (exact && !options.paths_dir.empty()) {
-          savePath(p, *setup.space, setup.ss->getSolutionPath(),
-                   options.paths_dir / (config + "-" + number + "-" + checker + "-" + planner->getName() + "-" +
-                                        run["run index INTEGER"] + (invalid ? "-invalid" : "") + ".yaml"),
-                   {p.files.request.filename().string() + ": " + planner->getName() + " with " + checker + ", run " +
-                    run["run index INTEGER"] + (invalid ? ", invalid" : ", verified")});
-        }
         log.solved += exact ? 1 : 0;
         log.verified += verified ? 1 : 0;
         log.invalid += invalid ? 1 : 0;
+        // OMPL's benchmark catches what this event throws and goes on: a
+        // path that cannot be written is kept and thrown after the runs.
+        if (exact && !options.paths_dir.empty() && !save_error) {
+          try {
+            savePath(
+                p, *setup.space, setup.ss->getSolutionPath(),
+                options.paths_dir / (config + "-" + number + "-" + checker + "-" + fileNamePart(planner->getName()) +
+                                     "-" + run["run index INTEGER"] + (invalid ? "-invalid" : "") + ".yaml"),
+                {p.files.request.filename().string() + ": " + planner->getName() + " with " + checker + ", run " +
+                 run["run index INTEGER"] + (invalid ? ", invalid" : ", verified")});
+          } catch (...) {
+            save_error = std::current_exception();
+          }
+        }
         if (observer.run_finished) observer.run_finished(checker, planner->getName(), exact, verified, invalid);
       });
       ot::Benchmark::Request request(time_limit, options.mem_limit, static_cast<unsigned>(options.runs), 0.05,
                                      /*displayProgress=*/false, /*saveConsoleOutput=*/false, /*simplify=*/false);
       bench.benchmark(request);
+      if (save_error) std::rethrow_exception(save_error);
       std::ofstream out(log.file);
       if (!out || !bench.saveResultsToStream(out) || !(out << std::flush)) {
         throw InvalidInputError("cannot write the benchmark log " + log.file.string());

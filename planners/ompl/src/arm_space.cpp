@@ -177,4 +177,19 @@ void ArmSpace::edge(const ob::State* s1, const ob::State* s2, double* q0, double
   }
 }
 
+std::vector<std::vector<double>> ArmSpace::pathConfigurations(const std::vector<const ob::State*>& states) const {
+  std::vector<std::vector<double>> out;
+  if (states.empty()) return out;
+  out.push_back(configuration(states.front()));
+  const std::size_t n = out.front().size();
+  std::vector<double> q0(n), q1(n);
+  for (std::size_t i = 1; i < states.size(); ++i) {
+    edge(states[i - 1], states[i], q0.data(), q1.data());
+    std::vector<double> next = out.back();
+    for (std::size_t k = 0; k < n; ++k) next[k] += q1[k] - q0[k];
+    out.push_back(std::move(next));
+  }
+  return out;
+}
+
 }  // namespace mddual::planning

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -325,10 +327,21 @@ void saveMbmTrajectory(const std::filesystem::path& file, const MbmTrajectory& t
     out << YAML::BeginMap << YAML::Key << "positions" << YAML::Value << YAML::Flow << values << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap << YAML::EndMap;
-  std::ofstream f(file);
-  for (const std::string& line : comment) f << "# " << line << "\n";
-  f << out.c_str() << "\n";
-  if (!f.flush()) throw SceneError(display(file) + ": cannot be written");
+  // Written beside the file, then renamed over it: no half-written file.
+  std::filesystem::path part = file;
+  part += ".part";
+  {
+    std::ofstream f(part);
+    for (const std::string& line : comment) f << "# " << line << "\n";
+    f << out.c_str() << "\n";
+    if (!f.flush()) throw SceneError(display(file) + ": cannot be written (" + std::strerror(errno) + ")");
+  }
+  std::error_code ec;
+  std::filesystem::rename(part, file, ec);
+  if (ec) {
+    std::filesystem::remove(part, ec);
+    throw SceneError(display(file) + ": cannot be written (" + ec.message() + ")");
+  }
 }
 
 std::vector<double> applyJointValues(const RobotModel& model, std::vector<double> base,

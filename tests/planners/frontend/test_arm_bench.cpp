@@ -59,16 +59,22 @@ std::set<std::string> problemsLogged(const std::vector<ArmBenchLog>& logs) {
   return out;
 }
 
-TEST(ArmBench, ShardsSplitTheFirstProblemsOfADirectory) {
+/// One RRT-Connect run with mdd on each of the first `problems` problems.
+ArmBenchOptions oneRunOptions(int problems) {
   ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
-  const ArmRobot robot = loadArmRobot(kArm7 / "arm7.urdf", kArm7 / "arm7.srdf");
-  scene::testing::TempDir dir;
   ArmBenchOptions options;
   options.checkers = {"mdd"};
   options.planners = {"RRTConnect"};
   options.runs = 1;
-  options.time_limit = 10.0;  // a safety net: these problems take milliseconds
-  options.problems = 3;
+  options.time_limit = 10.0;  // a safety net: table_pick's problems take milliseconds
+  options.problems = problems;
+  return options;
+}
+
+TEST(ArmBench, ShardsSplitTheFirstProblemsOfADirectory) {
+  const ArmRobot robot = loadArmRobot(kArm7 / "arm7.urdf", kArm7 / "arm7.srdf");
+  scene::testing::TempDir dir;
+  ArmBenchOptions options = oneRunOptions(3);
   std::set<std::string> all;
   for (int index = 0; index < 2; ++index) {
     options.shard = {index, 2};
@@ -84,6 +90,7 @@ TEST(ArmBench, ShardsSplitTheFirstProblemsOfADirectory) {
     int saved = 0;
     for (const ArmBenchLog& log : logs) {
       saved += log.solved;
+      EXPECT_EQ(log.solved, 1) << log.problem << ": table_pick's problems take milliseconds";
       EXPECT_EQ(log.invalid, 0) << log.problem;
     }
     int files = 0;
@@ -94,6 +101,24 @@ TEST(ArmBench, ShardsSplitTheFirstProblemsOfADirectory) {
     EXPECT_EQ(files, saved);
   }
   EXPECT_EQ(all.size(), 3u);
+}
+
+TEST(ArmBench, APathThatCannotBeWrittenFailsTheBenchmark) {
+  const ArmRobot robot = loadArmRobot(kArm7 / "arm7.urdf", kArm7 / "arm7.srdf");
+  scene::testing::TempDir dir;
+  ArmBenchOptions options = oneRunOptions(1);
+  options.output_dir = dir.path() / "logs";
+  options.paths_dir = dir.path() / "paths";
+  // A folder where the path's file would go: it cannot be written there.
+  fs::create_directories(options.paths_dir / "table_pick-0001-mdd-RRTConnect-0.yaml");
+  try {
+    runArmBench(robot, kArm7 / "problems" / "table_pick", options);
+    ADD_FAILURE() << "no error for a path that cannot be written";
+  } catch (const scene::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("table_pick-0001-mdd-RRTConnect-0.yaml: cannot be written ("),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

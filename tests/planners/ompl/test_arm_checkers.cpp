@@ -115,6 +115,23 @@ TEST(ArmSpace, EdgesFollowOmplsInterpolationThroughContinuousJoints) {
     EXPECT_NEAR(std::remainder(q[1] - (q0[1] + t * (q1[1] - q0[1])), 2 * kPi), 0.0, 1e-12);
   }
   EXPECT_GT(wrapped, 100) << "too few edges the short way round across +-pi";
+  // A path across +-pi and back: its configurations step as OMPL's edges do
+  // (3.0 -> -3.0 is +0.28 rad, not -6.0), away from [-pi, pi) and back.
+  std::vector<ob::ScopedState<>> path(4, ob::ScopedState<>(space->stateSpace()));
+  const double angles[] = {2.5, 3.0, -3.0, 2.9};
+  std::vector<const ob::State*> states;
+  for (int i = 0; i < 4; ++i) {
+    const std::vector<double> q = {0.1 * i, angles[i]};
+    space->setState(path[static_cast<std::size_t>(i)].get(), q.data());
+    states.push_back(path[static_cast<std::size_t>(i)].get());
+  }
+  const std::vector<std::vector<double>> unwrapped = space->pathConfigurations(states);
+  ASSERT_EQ(unwrapped.size(), 4u);
+  EXPECT_NEAR(unwrapped[0][1], 2.5, 1e-12);
+  EXPECT_NEAR(unwrapped[1][1], 3.0, 1e-12);
+  EXPECT_NEAR(unwrapped[2][1], 2 * kPi - 3.0, 1e-12);
+  EXPECT_NEAR(unwrapped[3][1], 2.9, 1e-12);
+  EXPECT_NEAR(unwrapped[3][0], 0.3, 1e-12);
 }
 
 TEST(ArmSpace, WrapNamesWhatIsWrong) {

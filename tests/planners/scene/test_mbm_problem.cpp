@@ -227,7 +227,7 @@ TEST(MbmProblem, ListsTheProblemsOfADirectory) {
 TEST(MbmProblem, TrajectoriesReadBackExactly) {
   TempDir dir;
   MbmTrajectory t;
-  t.joint_names = {"joint1", "joint 2"};  // a name YAML must quote
+  t.joint_names = {"joint1", "a, b: [c]"};  // a name YAML must quote in a flow list
   // 0.1 and -1.307065 need few digits; 1/3 and the smallest normal need 17.
   t.points = {{0.1, -1.307065}, {1.0 / 3.0, std::numeric_limits<double>::min()}, {-0.0, 2.0 * kPi}};
   const std::filesystem::path file = dir.path() / "trajectory0001.yaml";

@@ -30,8 +30,12 @@
 //
 // Paths: with ArmBenchOptions::paths_dir, every exact solution is also
 // written there as a trajectory (scene::saveMbmTrajectory, the group's
-// joints): "<dir>-<NNNN>-<checker>-<planner>-<run>.yaml", with "-invalid"
-// before ".yaml" when the verification found a contact.
+// joints, continuous ones unwrapped along the path):
+// "<dir>-<NNNN>-<checker>-<planner>-<run>.yaml" (the planner's name with
+// characters other than letters, digits, '-', '_', '.' as '_'), with
+// "-invalid" before ".yaml" when the verification found a contact. A path
+// that cannot be written ends the benchmark with its SceneError once the
+// problem's runs are done.
 //
 // Sharding: problem k of the directory (in number order) belongs to shard k
 // mod N.

@@ -67,6 +67,10 @@ class ArmSpace {
   /// The edge from s1 to s2 under OMPL's interpolation: q0 and q1 (full
   /// configurations) with q(t) = q0 + t (q1 - q0).
   void edge(const ompl::base::State* s1, const ompl::base::State* s2, double* q0, double* q1) const;
+  /// The full configurations of a path's states, continuous joints unwrapped
+  /// along it: the first state's configuration, then each the previous one
+  /// plus edge()'s step, so straight lines between them are OMPL's edges.
+  std::vector<std::vector<double>> pathConfigurations(const std::vector<const ompl::base::State*>& states) const;
   /// The full configuration the joints outside the group keep.
   const std::vector<double>& fixedConfiguration() const { return fixed_; }
 

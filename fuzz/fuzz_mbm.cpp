@@ -1,9 +1,12 @@
 // Fuzz target: the arm problem readers on arm7 (configs/arm7). The first
 // byte picks the reader: 0 a MotionBenchMaker scene (sceneNNNN.yaml), 1 a
 // request (requestNNNN.yaml, then its joint values applied to the robot),
-// 2 an SRDF (its collision filter and every group's variables and states).
+// 2 an SRDF (its collision filter and every group's variables and states),
+// 3 a trajectory (trajectoryNNNN.yaml, then each point applied to the robot).
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "fuzz_input_file.h"
 #include "mddual/error.h"
@@ -23,7 +26,7 @@ const mddual::scene::RobotModel& arm7() {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   const mddual::scene::RobotModel& model = arm7();
-  const std::uint8_t which = data[0] % 3;
+  const std::uint8_t which = data[0] % 4;
   try {
     if (which == 0) {
       (void)mddual::scene::loadMbmScene(mddual::fuzz::writeInput(data + 1, size - 1, ".yaml"), model);
@@ -31,6 +34,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const mddual::scene::MbmRequest r =
           mddual::scene::loadMbmRequest(mddual::fuzz::writeInput(data + 1, size - 1, ".yaml"));
       (void)mddual::scene::applyJointValues(model, model.defaultConfiguration(), r.start, "start_state");
+    } else if (which == 3) {
+      const mddual::scene::MbmTrajectory t =
+          mddual::scene::loadMbmTrajectory(mddual::fuzz::writeInput(data + 1, size - 1, ".yaml"));
+      for (const std::vector<double>& point : t.points) {
+        std::vector<std::pair<std::string, double>> values;
+        for (std::size_t k = 0; k < point.size(); ++k) values.emplace_back(t.joint_names[k], point[k]);
+        (void)mddual::scene::applyJointValues(model, model.defaultConfiguration(), values, "points");
+      }
     } else {
       const mddual::scene::Srdf srdf =
           mddual::scene::parseSrdf(std::string(reinterpret_cast<const char*>(data + 1), size - 1), "input.srdf");

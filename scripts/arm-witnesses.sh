@@ -19,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 robots=("$@")
 [ ${#robots[@]} -eq 0 ] && robots=(arm7 panda)
-time_limit="${MDDUAL_WITNESS_TIME_LIMIT:-60}"
+time_limit="${MDDUAL_WITNESS_TIME_LIMIT:-60}"  # whole seconds
 retries="${MDDUAL_WITNESS_RETRIES:-5}"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j "${MDDUAL_JOBS:-$(nproc)}" --target mddual >/dev/null
@@ -38,6 +38,7 @@ for robot in "${robots[@]}"; do
     out="$work/$robot-$set_name"
     plan "$dir" "$out" 1 "$time_limit"
     count=0
+    found=()
     for request in "$dir"request*.yaml; do
       number=$(basename "$request" .yaml)
       number=${number#request}
@@ -55,8 +56,14 @@ for robot in "${robots[@]}"; do
         fi
         echo "$robot/$set_name: problem $number needed a retry: $(basename "$path")"
       fi
-      cp "$path" "${dir%/}/trajectory$number.yaml"
+      found+=("$path:$number")
       count=$((count + 1))
+    done
+    # Every problem has its path: the old ones go (a problem removed since
+    # would leave a trajectory without a scene), the new ones come.
+    rm -f "${dir%/}"/trajectory*.yaml
+    for entry in "${found[@]}"; do
+      cp "${entry%:*}" "${dir%/}/trajectory${entry##*:}.yaml"
     done
     echo "$robot/$set_name: $count witness paths"
   done

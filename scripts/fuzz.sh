@@ -6,7 +6,7 @@
 #   fuzz_urdf      configs/**/*.urdf
 #   fuzz_mesh      configs/**/meshes/* (first byte: the format)
 #   fuzz_jsonl     fuzz/seeds/jsonl (first byte: pd's method)
-#   fuzz_mbm       configs/arm7's first problems and SRDF (first byte: the reader)
+#   fuzz_mbm       configs/arm7's first problems, witness paths and SRDF (first byte: the reader)
 # plus every past finding in fuzz/findings (named <target>-<what>).
 # MDDUAL_FUZZ_RUNS sets the executions of every target (default: per target,
 # below, about 25 to 60 s each on a 2-core machine); -seed=1 makes a run
@@ -58,10 +58,12 @@ while IFS= read -r -d '' mesh; do
   i=$((i + 1))
 done < <(find configs -path '*meshes*' -type f -print0)
 
-# The mbm target reads the reader from the first byte (0 scene, 1 request, 2 SRDF).
+# The mbm target reads the reader from the first byte (0 scene, 1 request, 2 SRDF,
+# 3 trajectory).
 for set in configs/arm7/problems/*; do
   { printf '\x00'; cat "$set/scene0001.yaml"; } >"$corpus/mbm/$(basename "$set")-scene"
   { printf '\x01'; cat "$set/request0001.yaml"; } >"$corpus/mbm/$(basename "$set")-request"
+  { printf '\x03'; cat "$set/trajectory0001.yaml"; } >"$corpus/mbm/$(basename "$set")-trajectory"
 done
 { printf '\x02'; cat configs/arm7/arm7.srdf; } >"$corpus/mbm/arm7-srdf"
 

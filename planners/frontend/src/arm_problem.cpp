@@ -114,7 +114,7 @@ std::vector<std::vector<double>> armTrajectoryStates(const ArmProblem& p, const 
       throw scene::SceneError(what + ": joint_names: joint " + quote(name) + " is not in group " + quote(p.group));
   }
   for (int v : group) {
-    const std::string& name = model.joint(model.variableJoint(v)).name;
+    const std::string& name = model.variableName(v);
     if (std::find(trajectory.joint_names.begin(), trajectory.joint_names.end(), name) == trajectory.joint_names.end()) {
       throw scene::SceneError(what + ": joint_names: lacks joint " + quote(name) + " of group " + quote(p.group));
     }
@@ -135,7 +135,7 @@ std::vector<std::vector<double>> armTrajectoryStates(const ArmProblem& p, const 
 scene::MbmTrajectory armTrajectory(const ArmProblem& p, const std::vector<std::vector<double>>& states) {
   scene::MbmTrajectory t;
   const scene::RobotModel& model = p.space->model();
-  for (int v : p.space->variables()) t.joint_names.push_back(model.joint(model.variableJoint(v)).name);
+  for (int v : p.space->variables()) t.joint_names.push_back(model.variableName(v));
   for (const std::vector<double>& q : states) {
     std::vector<double>& point = t.points.emplace_back();
     for (int v : p.space->variables()) point.push_back(q[static_cast<std::size_t>(v)]);

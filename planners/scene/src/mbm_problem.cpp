@@ -13,6 +13,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 
 #include "mddual/scene/builders.h"
 #include "scene_detail.h"
@@ -296,9 +297,9 @@ MbmTrajectory loadMbmTrajectory(const std::filesystem::path& file) {
   MbmTrajectory t;
   t.joint_names = jt["joint_names"].texts();
   if (t.joint_names.empty()) jt["joint_names"].fail("missing (a trajectory names its joints)");
+  std::set<std::string> seen;
   for (std::size_t i = 0; i < t.joint_names.size(); ++i) {
-    if (std::find(t.joint_names.begin(), t.joint_names.begin() + static_cast<std::ptrdiff_t>(i), t.joint_names[i]) !=
-        t.joint_names.begin() + static_cast<std::ptrdiff_t>(i)) {
+    if (!seen.insert(t.joint_names[i]).second) {
       jt["joint_names"][i].fail("repeats joint " + quote(t.joint_names[i]));
     }
   }

@@ -9,6 +9,7 @@
 #
 #   ./scripts/arm-witnesses.sh              # arm7 and panda, all six sets
 #   ./scripts/arm-witnesses.sh panda        # one robot
+#   MDDUAL_WITNESS_SETS="mbm_box mbm_table_pick" ./scripts/arm-witnesses.sh panda   # some sets
 #
 # A problem without a path after one run of MDDUAL_WITNESS_TIME_LIMIT seconds
 # (default 60) is tried again alone, with MDDUAL_WITNESS_RETRIES more runs
@@ -35,6 +36,9 @@ plan() {
 for robot in "${robots[@]}"; do
   for dir in configs/"$robot"/problems/*/; do
     set_name=$(basename "$dir")
+    if [ -n "${MDDUAL_WITNESS_SETS:-}" ] && [[ " $MDDUAL_WITNESS_SETS " != *" $set_name "* ]]; then
+      continue
+    fi
     out="$work/$robot-$set_name"
     plan "$dir" "$out" 1 "$time_limit"
     count=0

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The README's arm table, from the pages scripts/run-arm-bench.sh writes.
 
-Reads the summary tables of docs/results/arms.md (arm7) and
-docs/results/panda.md (the Panda), keeps the rows of one planner
+Reads the summary tables of docs/results/arms.md (arm7),
+docs/results/panda.md (the Panda) and docs/results/panda-mbm.md (the Panda in
+MotionBenchMaker's own scenes), keeps the rows of one planner
 (RRTConnectkConfigDefault unless --planner says otherwise) and writes one
 line per (robot, problem set): success, median planning time (the planner's
 own solve time, `median solve (s)`, where the page has it, else OMPL's
@@ -91,7 +92,8 @@ def headline(pages, planner):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--results", nargs="+", default=[os.path.join(ROOT, "docs", "results", "arms.md"),
-                                                          os.path.join(ROOT, "docs", "results", "panda.md")])
+                                                          os.path.join(ROOT, "docs", "results", "panda.md"),
+                                                          os.path.join(ROOT, "docs", "results", "panda-mbm.md")])
     parser.add_argument("--planner", default="RRTConnectkConfigDefault")
     parser.add_argument("--readme", default=os.path.join(ROOT, "README.md"))
     args = parser.parse_args()

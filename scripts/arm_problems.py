@@ -265,15 +265,18 @@ def sample_goal(arm, rng, boxes, target):
 # ---- YAML text ------------------------------------------------------------------------
 
 def scene_yaml(arm, kind, objects):
+    """objects: (name, centre, size) boxes without a turn, or (name, type, dimensions, position, quaternion x y
+    z w) with type box or cylinder (dimensions height, radius)."""
     lines = ["name: %s" % kind, "robot_state:", "  joint_state:",
              "    name: [%s]" % arm.finger_joint, "    position: [%s]" % fmt(arm.finger),
              "robot_model_name: %s" % arm.name, "world:", "  collision_objects:"]
-    for name, centre, size in objects:
+    for obj in objects:
+        name, kind, dims, centre, quat = obj if len(obj) == 5 else (obj[0], "box", obj[2], obj[1], (0, 0, 0, 1))
         lines += ["    - header: {frame_id: world}", "      id: %s" % name, "      primitives:",
-                  "        - type: box", "          dimensions: [%s]" % ", ".join(fmt(s) for s in size),
+                  "        - type: %s" % kind, "          dimensions: [%s]" % ", ".join(fmt(s) for s in dims),
                   "      primitive_poses:",
                   "        - position: [%s]" % ", ".join(fmt(c) for c in centre),
-                  "          orientation: [0, 0, 0, 1]"]
+                  "          orientation: [%s]" % ", ".join(fmt(c) for c in quat)]
     return "\n".join(lines) + "\n"
 
 

@@ -15,7 +15,11 @@
 #
 # MDDUAL_ARM_ROBOT (default arm7) picks the robot: configs/<robot>/<robot>.urdf
 # and .srdf and its sets; for a robot other than arm7 the outputs are
-# out/bench-arms-<robot>/ and docs/results/<robot>.md.
+# out/bench-arms-<robot>/ and docs/results/<robot>.md. MDDUAL_ARM_PAGE names
+# another page for other sets of the same robot, e.g. the Panda's sets in
+# MotionBenchMaker's own scenes:
+#   MDDUAL_ARM_ROBOT=panda MDDUAL_ARM_PAGE=panda-mbm scripts/run-arm-bench.sh \
+#     mbm_bookshelf_thin mbm_box mbm_table_pick mbm_table_under_pick
 # MDDUAL_ARM_PROBLEMS (default 20) problems per set, MDDUAL_ARM_RUNS (default
 # 3) runs per problem, planner and checker, MDDUAL_ARM_LIMIT (default 10)
 # seconds per run. MDDUAL_ARM_BENCH_OUT changes out/bench-arms; MDDUAL_JOBS
@@ -30,12 +34,13 @@ if [ ! -f "$config/$robot.urdf" ] || [ ! -f "$config/$robot.srdf" ]; then
   echo "run-arm-bench: no robot $config/$robot.urdf and $config/$robot.srdf" >&2
   exit 2
 fi
-if [ "$robot" = arm7 ]; then
+page="${MDDUAL_ARM_PAGE:-$robot}"
+if [ "$page" = arm7 ]; then
   results=docs/results/arms.md
   default_out=out/bench-arms
 else
-  results="docs/results/$robot.md"
-  default_out="out/bench-arms-$robot"
+  results="docs/results/$page.md"
+  default_out="out/bench-arms-$page"
 fi
 problems="${MDDUAL_ARM_PROBLEMS:-20}"
 runs="${MDDUAL_ARM_RUNS:-3}"
@@ -47,6 +52,7 @@ cmake --build build/release -j "$jobs" --target mddual >/dev/null
 mkdir -p "$out"
 table="$out/$(basename "$results")"
 command="MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_RUNS=$runs MDDUAL_ARM_LIMIT=$limit ./scripts/run-arm-bench.sh ${*}"
+[ "$page" = "$robot" ] || command="MDDUAL_ARM_PAGE=$page $command"
 [ "$robot" = arm7 ] || command="MDDUAL_ARM_ROBOT=$robot $command"
 {
   echo "# $robot on its MotionBenchMaker problem sets"

@@ -1,5 +1,6 @@
 // The arms' problem sets (configs/arm7/problems and configs/panda/problems,
-// scripts/arm_problems.py): six sets of MotionBenchMaker problems per robot;
+// scripts/arm_problems.py): six sets of MotionBenchMaker problems per robot,
+// and the Panda's four in MotionBenchMaker's own scenes (scripts/mbm_panda.py);
 // every problem loads, its start and goal are within the joint limits and
 // free by the exact check, and its straight edge is blocked in at least some
 // problems of each set (the sets are not trivial); every problem has a
@@ -33,6 +34,7 @@ struct ArmSets {
   std::string group;
   std::size_t problems;  ///< per set
   int blocked;           ///< at least this many blocked straight edges per set
+  std::vector<std::string> sets;
 };
 
 std::ostream& operator<<(std::ostream& out, const ArmSets& s) {
@@ -41,13 +43,16 @@ std::ostream& operator<<(std::ostream& out, const ArmSets& s) {
 
 class ArmProblems : public ::testing::TestWithParam<ArmSets> {};
 
-const std::vector<std::string> kSets = {"bookshelf_thin",   "cage",      "box", "table_pick",
-                                        "table_under_pick", "table_bars"};
+std::vector<std::string> pandaSets() {
+  std::vector<std::string> sets = testing::kArmSets;
+  sets.insert(sets.end(), testing::kPandaMbmSets.begin(), testing::kPandaMbmSets.end());
+  return sets;
+}
 
 TEST_P(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
   const ArmSets& arm = GetParam();
   const ArmRobot robot = loadArmRobot(arm.dir / (arm.name + ".urdf"), arm.dir / (arm.name + ".srdf"));
-  for (const std::string& set : kSets) {
+  for (const std::string& set : arm.sets) {
     const std::vector<scene::MbmProblemFiles> problems = scene::listMbmProblems(arm.dir / "problems" / set);
     EXPECT_GE(problems.size(), arm.problems) << set;
     int blocked = 0;
@@ -69,7 +74,7 @@ TEST_P(ArmProblems, EveryProblemLoadsWithAFreeStartAndGoal) {
 TEST_P(ArmProblems, EveryProblemHasACertifiedWitnessPath) {
   const ArmSets& arm = GetParam();
   const ArmRobot robot = loadArmRobot(arm.dir / (arm.name + ".urdf"), arm.dir / (arm.name + ".srdf"));
-  for (const std::string& set : kSets) {
+  for (const std::string& set : arm.sets) {
     int edges = 0;
     for (const scene::MbmProblemFiles& files : scene::listMbmProblems(arm.dir / "problems" / set)) {
       const ArmProblem p = loadArmProblem(robot, files);
@@ -128,8 +133,8 @@ TEST(ArmWitness, BadTrajectoriesNameTheFileAndTheJoint) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Arms, ArmProblems,
-                         ::testing::Values(ArmSets{"arm7", kArm7Dir, "arm", 20, 5},
-                                           ArmSets{"panda", kPandaDir, "panda_arm", 10, 3}),
+                         ::testing::Values(ArmSets{"arm7", kArm7Dir, "arm", 20, 5, testing::kArmSets},
+                                           ArmSets{"panda", kPandaDir, "panda_arm", 10, 3, pandaSets()}),
                          [](const ::testing::TestParamInfo<ArmSets>& param) { return param.param.name; });
 
 /// Whether links k and l touch at q (the world empty, only that pair checked).

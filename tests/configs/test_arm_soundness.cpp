@@ -10,10 +10,11 @@
 // (edges refused that the dense check passes) are counted and printed, not
 // asserted.
 //
-// The CI sample: 24 edges per set, on its first 2 problems (arm7's and the
-// Panda's sets). The full sweep (docs/testing.md): MDDUAL_PLANNING_SCALE=420
-// MDDUAL_ARM_DENSE_STEP=1e-4 runs 10,080 edges per set over all its problems
-// (20 per set of arm7, 10 of the Panda).
+// The CI sample: 24 edges per set, on its first 2 problems (arm7's sets, the
+// Panda's, and the Panda's in MotionBenchMaker's scenes). The full sweep
+// (docs/testing.md): MDDUAL_PLANNING_SCALE=420 MDDUAL_ARM_DENSE_STEP=1e-4
+// runs 10,080 edges per set over all its problems (20 per set of arm7, 10 of
+// the Panda).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -164,10 +165,11 @@ TEST_P(ArmSoundness, NoMissesAndLastValidBeforeTheFirstContact) {
 
 std::vector<ArmSet> armSets() {
   std::vector<ArmSet> out;
-  for (const char* set : {"bookshelf_thin", "cage", "box", "table_pick", "table_under_pick", "table_bars"}) {
+  for (const std::string& set : testing::kArmSets) {
     out.push_back({"arm7", kArm7Dir, set});
     out.push_back({"panda", kPandaDir, set});
   }
+  for (const std::string& set : testing::kPandaMbmSets) out.push_back({"panda", kPandaDir, set});
   return out;
 }
 

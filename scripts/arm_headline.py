@@ -100,7 +100,13 @@ def main():
     pages = [read_page(p) for p in args.results if os.path.exists(p)]
     if not pages:
         raise SystemExit("arm_headline: none of %s exists" % ", ".join(args.results))
-    made = "; ".join("%s: %s" % (robot, line[len("Made by "):].split(" on ")[0]) for robot, line, _ in pages)
+    # Each page by its robot, a robot's second page by its file name (panda-mbm.md).
+    names, seen = [], set()
+    for path, (robot, _, _) in zip([p for p in args.results if os.path.exists(p)], pages):
+        names.append(os.path.splitext(os.path.basename(path))[0] if robot in seen else robot)
+        seen.add(robot)
+    made = "; ".join("%s: %s" % (name, line[len("Made by "):].split(" on ")[0])
+                     for name, (_, line, _) in zip(names, pages))
     text = "\n".join(["Made by `scripts/arm_headline.py` from the %s rows of docs/results (%s)." % (args.planner, made),
                       ""] + headline(pages, args.planner)) + "\n"
     readme_markers.replace_between(args.readme, "<!-- arms:begin -->", "<!-- arms:end -->", text, "arm_headline")

@@ -9,7 +9,9 @@
 #
 #   scripts/run-arm-edges-bench.sh [SET ...]
 #
-# MDDUAL_ARM_ROBOT (default arm7; or panda) the robot,
+# MDDUAL_ARM_ROBOT (default arm7; or panda) the robot, MDDUAL_ARM_PAGE
+# (default the robot) the page, docs/results/<page>-edges.md (panda-mbm for
+# the Panda's mbm_* sets),
 # MDDUAL_ARM_PROBLEMS (default 2) problems per set, MDDUAL_ARM_EDGES (default
 # 150) edges per problem, MDDUAL_ARM_PASSES (default 3) timed passes;
 # MDDUAL_JOBS the build's parallelism.
@@ -25,12 +27,12 @@ robot="${MDDUAL_ARM_ROBOT:-arm7}"
 [ -d "configs/$robot/problems" ] || { echo "run-arm-edges-bench: no configs/$robot/problems" >&2; exit 2; }
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j "$jobs" --target mddual_bench_arm_edges >/dev/null
+page="${MDDUAL_ARM_PAGE:-$robot}"
 out=docs/results/arm-edges.md
 robot_env=""
-if [ "$robot" != arm7 ]; then
-  out="docs/results/$robot-edges.md"
-  robot_env="MDDUAL_ARM_ROBOT=$robot "
-fi
+[ "$page" = arm7 ] || out="docs/results/$page-edges.md"
+[ "$page" = "$robot" ] || robot_env="MDDUAL_ARM_PAGE=$page "
+[ "$robot" = arm7 ] || robot_env="MDDUAL_ARM_ROBOT=$robot $robot_env"
 command="${robot_env}MDDUAL_ARM_PROBLEMS=$problems MDDUAL_ARM_EDGES=$edges MDDUAL_ARM_PASSES=$passes ./scripts/run-arm-edges-bench.sh ${*}"
 {
   echo "# $robot: one certified motion check against FCL's discrete ones"

@@ -72,6 +72,16 @@ class ArmHeadline(unittest.TestCase):
         self.assertNotIn("old", text)
         self.assertNotIn("| 0.9 |", text)  # the BKPIECE row is not this planner's
 
+    def test_a_robots_second_page_goes_by_its_file_name(self):
+        first = page("panda", [("box", "RRTConnectkConfigDefault", "mdd", "100%", "0.07", "0")])
+        second = page("panda", [("mbm_box", "RRTConnectkConfigDefault", "mdd", "90%", "0.5", "0")])
+        result = self.run_script([first, second])
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(self.readme) as f:
+            text = f.read()
+        self.assertIn("(panda: `run X` at abc123; page1: `run X` at abc123).\n", text)
+        self.assertIn("| panda, mbm_box | 90% | 0.05 | 0 |\n", text)
+
     def test_a_page_without_solve_times_gives_ompls_times(self):
         new = page("arm7", [("cage", "RRTConnectkConfigDefault", "mdd", "100%", "0.07", "0")])
         old = page("panda", [("box", "RRTConnectkConfigDefault", "mdd", "100%", "0.5", "0")], old=True)

@@ -40,7 +40,8 @@ out (their scenes are meshes that MBM ships as STL files), and so is the cage
     PYTHONPATH=build/release/python python3 scripts/mbm_panda.py [SET ...]   # all four sets: about 40 minutes
     MDDUAL_WITNESS_SETS="SET ..." ./scripts/arm-witnesses.sh panda            # then their witness paths
 
-Needs the build's `mddual` module and NumPy; deterministic output.
+Needs the build's `mddual` module and NumPy; deterministic on a given build (one last-bit
+difference in an accept or reject shifts every later draw).
 """
 
 import copy
@@ -57,11 +58,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import arm_problems  # noqa: E402
 import panda_configs  # noqa: E402
 
-IK_RESTARTS = 50  # per scene draw (MBM's IK query makes 200 attempts; a draw that needs more is rarely solvable)
+IK_RESTARTS = 50  # per scene draw (MBM's IK query makes 200 attempts; here a failed draw is redrawn)
 IK_STEPS = 60
 PROBLEMS = 10  # per set
 CLEARANCE = 0.005  # m: start and goal this far from the scene (cylinders as boxes) and between checked links
-DAMPING = 1e-4  # squared damping of the least-squares steps (m^2)
+DAMPING = 1e-4  # squared damping of the least-squares steps (lambda = 0.01)
 SHOULDER = np.array([0.0, 0.0, 0.333])  # panda_joint2's origin: panda_link8 stays within REACH (m) of it
 REACH = 0.316 + 0.0825 + 0.384 + 0.0825 + 0.088 + 0.107
 SCENE_DRAWS = 3000
@@ -157,8 +158,8 @@ TABLE_UNDER_PICK = dict(TABLE_PICK, starts=[("table_top", (-0.5, 0, -0.3), _IDEN
                                              0.003)])
 
 # The cage is left out: its end-effector offset puts panda_link8 level, pointing +x, 0.69 m out and 0.37 m
-# up, a pose no IK descent reaches (0 of 50 from random configurations, at any turn about the approach
-# axis; the position alone: 43 of 50), so MBM's Panda goals there must use a tip other than panda_link8.
+# up, a pose our IK does not reach though it reaches the position
+# (python/tests/test_mbm_panda.py); MBM's Panda goals there presumably use another tip.
 SETS = {"mbm_bookshelf_thin": BOOKSHELF_THIN, "mbm_box": BOX, "mbm_table_pick": TABLE_PICK,
         "mbm_table_under_pick": TABLE_UNDER_PICK}
 FINGER = 0.04  # MBM's robot config opens the fingers to 0.065: the Panda's limit, 0.04, here

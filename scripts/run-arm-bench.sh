@@ -16,8 +16,9 @@
 # MDDUAL_ARM_ROBOT (default arm7) picks the robot: configs/<robot>/<robot>.urdf
 # and .srdf and its sets; for a robot other than arm7 the outputs are
 # out/bench-arms-<robot>/ and docs/results/<robot>.md. MDDUAL_ARM_PAGE names
-# another page for other sets of the same robot, e.g. the Panda's sets in
-# MotionBenchMaker's own scenes:
+# another page for other sets of the same robot (the sets must then be named;
+# scripts/arm_headline.py reads arms.md, panda.md and panda-mbm.md), e.g. the
+# Panda's sets in MotionBenchMaker's own scenes:
 #   MDDUAL_ARM_ROBOT=panda MDDUAL_ARM_PAGE=panda-mbm scripts/run-arm-bench.sh \
 #     mbm_bookshelf_thin mbm_box mbm_table_pick mbm_table_under_pick
 # MDDUAL_ARM_PROBLEMS (default 20) problems per set, MDDUAL_ARM_RUNS (default
@@ -35,6 +36,14 @@ if [ ! -f "$config/$robot.urdf" ] || [ ! -f "$config/$robot.srdf" ]; then
   exit 2
 fi
 page="${MDDUAL_ARM_PAGE:-$robot}"
+if [ "$page" != "$robot" ] && [ $# -eq 0 ]; then
+  echo "run-arm-bench: MDDUAL_ARM_PAGE=$page needs the sets to run (e.g. mbm_box)" >&2
+  exit 2
+fi
+if [ "$page" = arm7 ] && [ "$robot" != arm7 ]; then
+  echo "run-arm-bench: MDDUAL_ARM_PAGE=arm7 is arm7's page (docs/results/arms.md)" >&2
+  exit 2
+fi
 if [ "$page" = arm7 ]; then
   results=docs/results/arms.md
   default_out=out/bench-arms

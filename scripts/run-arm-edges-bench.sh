@@ -4,7 +4,7 @@
 # with segments of at most 1/32 rad (fcl-fine), on the same link pairs, per problem set of configs/ROBOT (mddual_bench_arm_edges:
 # edges drawn as RRT-Connect draws them, the fastest of the passes counts).
 # Builds the benchmark (Release, build/release) and writes
-# docs/results/arm-edges.md (arm7) or docs/results/panda-edges.md with this
+# docs/results/arm-edges.md (arm7) or docs/results/<page>-edges.md with this
 # command and the build.
 #
 #   scripts/run-arm-edges-bench.sh [SET ...]
@@ -28,6 +28,10 @@ robot="${MDDUAL_ARM_ROBOT:-arm7}"
 cmake -S . -B build/release -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build/release -j "$jobs" --target mddual_bench_arm_edges >/dev/null
 page="${MDDUAL_ARM_PAGE:-$robot}"
+if [ "$page" != "$robot" ] && [ $# -eq 0 ]; then
+  echo "run-arm-edges-bench: MDDUAL_ARM_PAGE=$page needs the sets to run (e.g. mbm_box)" >&2
+  exit 2
+fi
 out=docs/results/arm-edges.md
 robot_env=""
 [ "$page" = arm7 ] || out="docs/results/$page-edges.md"
